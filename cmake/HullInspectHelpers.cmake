@@ -1,0 +1,52 @@
+# Helpers shared by every CMakeLists.txt of the project.
+include_guard(GLOBAL)
+
+find_program(HI_CCACHE ccache)
+if(HI_CCACHE)
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${HI_CCACHE})
+  set(CMAKE_C_COMPILER_LAUNCHER ${HI_CCACHE})
+endif()
+
+# Warnings and sanitizer flags for project targets only (third-party headers are SYSTEM).
+function(hi_set_target_options target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wno-deprecated-declarations)
+  if(HI_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+  if(HI_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                             -fno-sanitize-recover=undefined)
+    target_link_options(${target} PRIVATE -fsanitize=address,undefined)
+  endif()
+endfunction()
+
+# hi_add_library(name SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# One target per core module, named hull_<module>; headers are included as
+# "<module>/<file>.h" from core/.
+function(hi_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR}/core)
+  target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  hi_set_target_options(${name})
+endfunction()
+
+# hi_add_test(name SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s])
+# A GoogleTest executable registered with CTest (one CTest entry per test case).
+function(hi_add_test name)
+  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE
+    HI_SHARED_DATA_DIR="${HI_SHARED_DATA_DIR}"
+    HI_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+    HI_BINARY_DIR="${PROJECT_BINARY_DIR}")
+  hi_set_target_options(${name})
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 600)
+  endif()
+  include(GoogleTest)
+  gtest_discover_tests(${name}
+    DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+endfunction()
