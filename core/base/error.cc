@@ -20,6 +20,8 @@ InputError::InputError(SourceLocation where, const std::string& message)
 OptionError::OptionError(const std::string& field, const std::string& why)
     : std::invalid_argument("option " + field + ": " + why), field_(field) {}
 
-std::string Problem::ToString() const { return where.ToString() + ": " + message; }
+std::string Problem::ToString() const {
+  return where.ToString() + (severity == Severity::kWarning ? ": warning: " : ": ") + message;
+}
 
 }  // namespace hull

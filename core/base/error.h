@@ -51,9 +51,11 @@ class Cancelled : public std::runtime_error {
 };
 
 // Collects the problems found by a validator instead of stopping at the first.
+enum class Severity { kError, kWarning };
 struct Problem {
   SourceLocation where;
   std::string message;
+  Severity severity = Severity::kError;
   std::string ToString() const;
 };
 

@@ -1,0 +1,46 @@
+// A small command-line parser for hullinspect-cli's sub-commands:
+// "--name value", "--name=value", boolean "--flag", and positionals.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace hull::cli {
+
+// Exit codes of hullinspect-cli (documented in --help and the README).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitFailure = 1,     // the work failed (e.g. a bundle with errors, a solver failure)
+  kExitUsage = 2,       // bad command line
+  kExitBadInput = 3,    // unreadable or malformed input file
+  kExitCancelled = 130  // interrupted (Ctrl-C)
+};
+
+class Args {
+ public:
+  // flags: names of options that take no value (without "--").
+  Args(const std::vector<std::string>& argv, std::set<std::string> flags);
+
+  bool Has(const std::string& name) const { return values_.count(name) > 0; }
+  std::string Get(const std::string& name, const std::string& fallback = "") const;
+  // Throws UsageError when the value is not a number.
+  double GetDouble(const std::string& name, double fallback) const;
+  long long GetInt(const std::string& name, long long fallback) const;
+  std::optional<std::string> Optional(const std::string& name) const;
+  const std::vector<std::string>& positionals() const { return positionals_; }
+  // Throws UsageError naming the first option not in allowed.
+  void AllowOnly(const std::set<std::string>& allowed) const;
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::vector<std::string> positionals_;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace hull::cli

@@ -1,0 +1,75 @@
+// hullinspect-cli: simulate, validate and inspect survey bundles, and run the
+// model-assisted pipeline without a display.
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "base/error.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+
+namespace {
+
+struct Command {
+  const char* name;
+  int (*run)(const hull::cli::CommandArgs&);
+  const char* summary;
+};
+
+const Command kCommands[] = {
+    {"simulate", hull::cli::RunSimulate, "write a simulated survey bundle or acoustic sequence with truth"},
+    {"validate", hull::cli::RunValidate, "check a survey bundle or acoustic sequence against the contract"},
+    {"info", hull::cli::RunInfo, "summarise a survey bundle, acoustic sequence or mesh"},
+};
+
+void PrintUsage() {
+  std::printf(
+      "usage: hullinspect-cli <command> [options]\n\n"
+      "HullInspect: model-assisted bundle adjustment and mapping of ship hulls.\n\n"
+      "commands:\n");
+  for (const auto& c : kCommands) std::printf("  %-10s %s\n", c.name, c.summary);
+  std::printf(
+      "\nRun 'hullinspect-cli <command> --help' for a command's options.\n\n"
+      "exit codes: 0 success, 1 the work failed, 2 bad command line,\n"
+      "            3 unreadable or malformed input, 130 cancelled\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+    PrintUsage();
+    return argc < 2 ? hull::cli::kExitUsage : hull::cli::kExitOk;
+  }
+  if (!std::strcmp(argv[1], "--version")) {
+    std::printf("hullinspect-cli 0.1.0\n");
+    return hull::cli::kExitOk;
+  }
+  const std::vector<std::string> args(argv + 2, argv + argc);
+  for (const auto& c : kCommands) {
+    if (std::strcmp(argv[1], c.name) != 0) continue;
+    try {
+      return c.run(args);
+    } catch (const hull::cli::UsageError& e) {
+      std::fprintf(stderr, "hullinspect-cli %s: %s\n(see 'hullinspect-cli %s --help')\n", c.name, e.what(), c.name);
+      return hull::cli::kExitUsage;
+    } catch (const hull::InputError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return hull::cli::kExitBadInput;
+    } catch (const hull::OptionError& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return hull::cli::kExitUsage;
+    } catch (const hull::Cancelled&) {
+      std::fprintf(stderr, "cancelled\n");
+      return hull::cli::kExitCancelled;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return hull::cli::kExitFailure;
+    }
+  }
+  std::fprintf(stderr, "hullinspect-cli: unknown command '%s'\n\n", argv[1]);
+  PrintUsage();
+  return hull::cli::kExitUsage;
+}

@@ -1,0 +1,94 @@
+// The survey simulator: writes a v1 survey bundle with ground truth for a
+// hull (the built-in parametric hull or any mesh file) carrying foreign
+// structure, surveyed by an HAUV with a servoed stereo or monocular camera
+// and a four-beam Janus DVL. Deterministic from the seed.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "base/progress.h"
+#include "geometry/triangle_mesh.h"
+#include "simulate/hull_forms.h"
+#include "simulate/survey_plan.h"
+#include "survey/survey.h"
+
+namespace hull {
+
+enum class ObjectSet {
+  kNone,
+  kDemo,       // centreline fouling strip, the 0.15 x 0.11 m cylinder, a box, a few patches (in the surveyed stretch)
+  kScattered,  // the demo set plus `scattered_patches` random patches over the survey
+};
+
+struct SurveySimulationOptions {
+  std::string name = "Simulated survey";
+  std::uint64_t seed = 1;
+
+  // Hull: the parametric hull when mesh_path is empty, else the mesh file
+  // scaled by mesh_scale; axes and waterline in the mesh's own frame.
+  std::string mesh_path;
+  double mesh_scale = 1.0;
+  HullFormOptions hull_form;
+  Eigen::Vector3d forward = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  double waterline = -1;      // along `up`; < 0: the hull form's draft, or 60 % of a mesh's height
+  double heading_deg = 20.0;  // ship heading in g
+
+  // Where and how the vehicle flies (start/end < 0: the middle 12 m of the hull).
+  LawnmowerOptions plan;
+
+  // Sensors.
+  CameraType camera = CameraType::kStereo;
+  NoiseModel noise;              // also written to survey.json
+  double servo_bias_deg = 2.0;   // servo slop: a constant bias of random sign ...
+  double servo_noise_deg = 0.3;  // ... plus noise
+  double dvl_max_range = 30.0;   // no return beyond
+  double dvl_dropout = 0.005;    // probability that a beam with a hit returns nothing
+
+  // Features.
+  double hull_feature_density = 25.0;     // per m^2 of salient hull
+  double object_feature_density = 400.0;  // per m^2 of foreign structure (textured)
+  double non_salient_fraction = 0.2;      // share of the hull with no features at all
+  double detection_probability = 0.85;
+  double max_feature_range = 4.0;      // m
+  double min_view_cosine = 0.15;       // no features seen at grazing angles
+  double wrong_match_fraction = 0.03;  // monocular only
+  double image_margin = 8.0;           // px kept clear at the image border
+
+  // Errors of the initial guesses.
+  double model_pose_error_m = 0.3, model_pose_error_deg = 2.0;
+  double extrinsic_error_m = 0.01, extrinsic_error_deg = 1.0;
+  double start_pose_error_m = 0.05, start_pose_error_deg = 0.2;
+
+  ObjectSet objects = ObjectSet::kDemo;
+  int scattered_patches = 0;
+  bool write_landmarks = false;  // landmarks.csv with noisy initial positions
+
+  void Check() const;  // throws OptionError
+};
+
+// "demo" (stereo, ~300 keyframes around the keel), "mono" (the same,
+// monocular), "curtiss" (full bottom and sides of the 183 m hull, >= 10,000
+// keyframes). Throws OptionError for another name.
+SurveySimulationOptions SurveyPreset(const std::string& name);
+std::vector<std::string> SurveyPresetNames();
+
+struct SimulatedSurvey {
+  SurveyBundle bundle;                                               // with truth; model_hint = "hull.ply"
+  TriangleMesh cad;                                                  // the CAD hull in M
+  std::vector<TriangleMesh> object_meshes;                           // true shapes in M, one per truth object
+  std::vector<std::pair<std::int64_t, std::int64_t>> wrong_matches;  // (keyframe, landmark)
+  std::vector<std::pair<std::int64_t, int>> dvl_dropouts;            // (keyframe, beam 1..4)
+};
+
+SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& options, Progress& progress);
+
+// Writes the bundle and its mesh (hull.ply, double precision). With
+// generator_extras, also DIR.gen/ (generator.json, objects_mesh.json,
+// wrong_matches.csv, dvl_dropouts.csv) for ../shared/tools/check-bundle.py.
+void WriteSimulatedSurvey(const SimulatedSurvey& survey, const std::string& dir, bool generator_extras = false);
+
+}  // namespace hull
