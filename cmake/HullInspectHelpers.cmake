@@ -31,7 +31,7 @@ function(hi_add_library name)
   hi_set_target_options(${name})
 endfunction()
 
-# hi_add_test(name SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s])
+# hi_add_test(name SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s]); LABELS default to "core".
 # A GoogleTest executable registered with CTest (one CTest entry per test case).
 function(hi_add_test name)
   cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
@@ -44,6 +44,9 @@ function(hi_add_test name)
   hi_set_target_options(${name})
   if(NOT ARG_TIMEOUT)
     set(ARG_TIMEOUT 600)
+  endif()
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS core)  # core tests also run in the sanitizer build
   endif()
   include(GoogleTest)
   gtest_discover_tests(${name}
