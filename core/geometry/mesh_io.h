@@ -9,7 +9,9 @@
 // ParaView), OBJ and STL (binary).
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
@@ -21,7 +23,9 @@ struct MeshLoadOptions {
   // (The DTC model in ../shared/data is 1:59.4, so scale = 59.4.)
   double scale = 1.0;
   Pose pose;
-  // Merge coincident vertices (STL and other triangle soups).
+  // Merge coincident vertices (STL and other triangle soups). PLY, OBJ and
+  // OFF are indexed already and keep their vertices in file order, so
+  // per-vertex data stays aligned with them.
   bool weld = true;
   // Make face normals point out of the hull (see TriangleMesh::OrientOutward).
   bool orient_outward = true;
@@ -29,8 +33,14 @@ struct MeshLoadOptions {
   OrientationReport* orientation = nullptr;
 };
 
-// Throws InputError naming the file (and line, for text formats).
+// Throws InputError naming the file (and line, for text formats); a file
+// with vertices but no faces (a point cloud) is an error here.
 TriangleMesh LoadMesh(const std::string& path, const MeshLoadOptions& options = {});
+
+// The vertices of any file LoadMesh reads, faces or not: e.g. a PLY with
+// only an `element vertex` (a scan). Triangle soups (STL) give each point
+// once; no transform is applied. Throws InputError as LoadMesh does.
+std::vector<Eigen::Vector3d> LoadPointCloud(const std::string& path);
 
 struct MeshSaveOptions {
   bool binary = true;            // PLY: binary_little_endian; STL is always binary
@@ -38,7 +48,9 @@ struct MeshSaveOptions {
   bool include_scalars = true;   // PLY: write vertex_scalars as vertex properties
 };
 
-// Format from the extension: .ply, .obj or .stl. Writes atomically.
+// Format from the extension: .ply, .obj or .stl, gzip-compressed when the
+// name ends in ".gz" (e.g. "hull.ply.gz"). Writes atomically. Throws
+// std::invalid_argument for another extension or an inconsistent mesh.
 void SaveMesh(const TriangleMesh& mesh, const std::string& path, const MeshSaveOptions& options = {});
 
 // True when the extension is one LoadMesh reads (including through assimp).

@@ -1,0 +1,432 @@
+// MeshIndex on Embree 3. Embree's BVH is in single precision, so it only
+// proposes candidates: every answer is recomputed in double precision on the
+// mesh's own vertices, and every float bound the BVH is given is widened by
+// a margin that covers the float rounding of vertices and query points.
+#include "geometry/mesh_index.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+
+#include "geometry/point_index.h"
+
+namespace hull {
+namespace {
+
+// ---- the process-wide Embree device, shared by all indices and released
+// with the last of them.
+struct Device {
+  RTCDevice device = nullptr;
+  Device() {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw std::runtime_error("MeshIndex: cannot create an Embree device");
+  }
+  ~Device() { rtcReleaseDevice(device); }
+  Device(const Device&) = delete;
+  Device& operator=(const Device&) = delete;
+};
+
+std::shared_ptr<Device> SharedDevice() {
+  static std::mutex mutex;
+  static std::weak_ptr<Device> shared;
+  std::lock_guard<std::mutex> lock(mutex);
+  std::shared_ptr<Device> d = shared.lock();
+  if (!d) {
+    d = std::make_shared<Device>();
+    shared = d;
+  }
+  return d;
+}
+
+void ThrowOnDeviceError(RTCDevice device, const char* what) {
+  const RTCError e = rtcGetDeviceError(device);
+  if (e != RTC_ERROR_NONE) {
+    throw std::runtime_error(std::string("MeshIndex: Embree error ") + std::to_string(static_cast<int>(e)) + " while " +
+                             what);
+  }
+}
+
+// Which feature of a triangle the closest point lies on; the numbering
+// matches the per-face edge pseudonormals (edge k = vertex k -> k + 1).
+enum Feature : int { kInterior = 0, kEdge0, kEdge1, kEdge2, kVertex0, kVertex1, kVertex2 };
+
+struct TrianglePoint {
+  Eigen::Vector3d point;
+  Feature feature;
+};
+
+// Closest point on segment a + s (b - a), s in [0, 1]; returns s.
+double SegmentParameter(const Eigen::Vector3d& p, const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  const Eigen::Vector3d ab = b - a;
+  const double len2 = ab.squaredNorm();
+  if (!(len2 > 0)) return 0;
+  return std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
+}
+
+// Exact closest point on triangle abc to the origin (Ericson, Real-Time
+// Collision Detection, 5.1.5: Voronoi regions), with the feature it lies on.
+// The caller passes the corners relative to the query point, so that
+// distances keep full precision even far from the coordinate origin.
+// Degenerate triangles (zero area) fall back to their three edges.
+TrianglePoint ClosestOnTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a;
+  const double d1 = -ab.dot(a), d2 = -ac.dot(a);
+  if (d1 <= 0 && d2 <= 0) return {a, kVertex0};
+  const double d3 = -ab.dot(b), d4 = -ac.dot(b);
+  if (d3 >= 0 && d4 <= d3) return {b, kVertex1};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0 && d1 - d3 > 0) return {a + (d1 / (d1 - d3)) * ab, kEdge0};
+  const double d5 = -ab.dot(c), d6 = -ac.dot(c);
+  if (d6 >= 0 && d5 <= d6) return {c, kVertex2};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0 && d2 - d6 > 0) return {a + (d2 / (d2 - d6)) * ac, kEdge2};
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0 && (d4 - d3) + (d5 - d6) > 0) {
+    return {b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b), kEdge1};
+  }
+  const double sum = va + vb + vc;
+  if (sum > 0 && va >= 0 && vb >= 0 && vc >= 0) {
+    const double v = vb / sum, w = vc / sum;
+    return {a + v * ab + w * ac, kInterior};
+  }
+  // Degenerate (or numerically flat) triangle: the nearest of its edges.
+  TrianglePoint best{a, kVertex0};
+  double best_d2 = std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d* corners[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d& s = *corners[k];
+    const Eigen::Vector3d& e = *corners[(k + 1) % 3];
+    const double t = SegmentParameter(Eigen::Vector3d::Zero(), s, e);
+    const Eigen::Vector3d x = s + t * (e - s);
+    if (x.squaredNorm() < best_d2) {
+      best_d2 = x.squaredNorm();
+      const Feature edge = static_cast<Feature>(kEdge0 + k);
+      const Feature start = static_cast<Feature>(kVertex0 + k);
+      const Feature end = static_cast<Feature>(kVertex0 + (k + 1) % 3);
+      best = {x, t <= 0 ? start : (t >= 1 ? end : edge)};
+    }
+  }
+  return best;
+}
+
+std::uint64_t EdgeKey(int a, int b) {
+  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
+  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
+  return (lo << 32) | hi;
+}
+
+// Smallest float >= x (x >= 0), so a float bound never undercuts a double one.
+float FloatAtLeast(double x) {
+  if (!(x < static_cast<double>(std::numeric_limits<float>::max()))) return std::numeric_limits<float>::infinity();
+  float f = static_cast<float>(x);
+  if (static_cast<double>(f) < x) f = std::nextafter(f, std::numeric_limits<float>::infinity());
+  return f;
+}
+
+// Per-query state of a closest-point search (lives on the caller's stack).
+struct ClosestSearch {
+  const TriangleMesh* mesh;
+  Eigen::Vector3d q;
+  double margin;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  int best_face = -1;
+  Eigen::Vector3d best_offset = Eigen::Vector3d::Zero();  // closest point - q
+  Feature best_feature = kInterior;
+
+  // Evaluates face f exactly; keeps the lexicographic minimum of
+  // (squared distance, face index), so the answer does not depend on the
+  // order in which faces are visited. Returns true when f became the best.
+  bool Offer(int f) {
+    const Face& F = mesh->faces[f];
+    const TrianglePoint tp =
+        ClosestOnTriangle(mesh->vertices[F[0]] - q, mesh->vertices[F[1]] - q, mesh->vertices[F[2]] - q);
+    const double d2 = tp.point.squaredNorm();
+    if (d2 < best_d2 || (d2 == best_d2 && f < best_face)) {
+      best_d2 = d2;
+      best_face = f;
+      best_offset = tp.point;
+      best_feature = tp.feature;
+      return true;
+    }
+    return false;
+  }
+
+  // The float search radius that still contains every face that could tie.
+  float Radius() const { return FloatAtLeast(std::sqrt(best_d2) + margin); }
+};
+
+bool ClosestCallback(RTCPointQueryFunctionArguments* args) {
+  auto* s = static_cast<ClosestSearch*>(args->userPtr);
+  const int f = static_cast<int>(args->primID);
+  if (f == s->best_face || !s->Offer(f)) return false;
+  const float r = s->Radius();
+  if (r < args->query->radius) {
+    args->query->radius = r;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+struct MeshIndex::Impl {
+  std::shared_ptr<Device> device;
+  RTCScene scene = nullptr;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // Embree works on vertices - centre
+  double extent = 0;                                 // largest |vertex - centre| coordinate
+  std::vector<Eigen::Vector3d> face_normals;         // unit, right-hand rule (zero if degenerate)
+  std::vector<Eigen::Vector3d> edge_pseudonormals;   // 3 per face: edge k = F[k] -> F[k + 1]
+  std::vector<Eigen::Vector3d> vertex_pseudonormals;
+  std::vector<std::vector<int>> vertex_faces;
+  std::unique_ptr<PointIndex> vertex_index;
+
+  ~Impl() {
+    if (scene) rtcReleaseScene(scene);
+  }
+
+  // Absolute slack added to float bounds for a query at q: covers the float
+  // rounding of the BVH's vertices and of q (relative 2^-24 each) with a
+  // wide safety factor.
+  double Margin(const Eigen::Vector3d& q) const { return 1e-6 * (extent + (q - centre).cwiseAbs().maxCoeff()) + 1e-30; }
+
+  // Exact closest point: a first bound from the hint face (or, without one,
+  // from the faces around the nearest vertex), then Embree's point query
+  // visits every face whose box lies within that bound, shrinking it.
+  ClosestSearch Search(const TriangleMesh& mesh, const Eigen::Vector3d& q, int hint_face) const {
+    ClosestSearch s{&mesh, q, Margin(q)};
+    if (hint_face >= 0 && hint_face < static_cast<int>(mesh.faces.size())) {
+      s.Offer(hint_face);
+    } else {
+      const auto nearest = vertex_index->Nearest(q, 1);
+      if (!nearest.empty()) {
+        for (int f : vertex_faces[nearest[0].first]) s.Offer(f);
+      }
+    }
+    RTCPointQuery query;
+    const Eigen::Vector3d qs = q - centre;
+    query.x = static_cast<float>(qs.x());
+    query.y = static_cast<float>(qs.y());
+    query.z = static_cast<float>(qs.z());
+    query.time = 0;
+    query.radius = s.Radius();
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(scene, &query, &context, ClosestCallback, &s);
+    return s;
+  }
+};
+
+MeshIndex::MeshIndex(const TriangleMesh& mesh) : mesh_(mesh), impl_(std::make_unique<Impl>()) {
+  Impl& I = *impl_;
+  const int nv = static_cast<int>(mesh.vertices.size());
+  const int nf = static_cast<int>(mesh.faces.size());
+  for (int f = 0; f < nf; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      if (mesh.faces[f][k] < 0 || mesh.faces[f][k] >= nv) {
+        throw std::invalid_argument("MeshIndex: face " + std::to_string(f) + " uses vertex " +
+                                    std::to_string(mesh.faces[f][k]) + " of " + std::to_string(nv));
+      }
+    }
+  }
+  if (nv > 0) {
+    const Eigen::AlignedBox3d box = mesh.Bounds();
+    I.centre = box.center();
+    I.extent = (box.max() - I.centre).cwiseAbs().maxCoeff();
+  }
+
+  // Normals and the angle-weighted pseudonormals (Baerentzen and Aanaes):
+  // faces' unit normals summed over an edge's faces, and weighted by the
+  // incident angle at a vertex.
+  I.face_normals.resize(nf);
+  I.vertex_pseudonormals.assign(nv, Eigen::Vector3d::Zero());
+  I.vertex_faces.assign(nv, {});
+  std::unordered_map<std::uint64_t, Eigen::Vector3d> edge_sum;
+  edge_sum.reserve(static_cast<std::size_t>(nf) * 2);
+  for (int f = 0; f < nf; ++f) {
+    const Face& F = mesh.faces[f];
+    const Eigen::Vector3d n =
+        (mesh.vertices[F[1]] - mesh.vertices[F[0]]).cross(mesh.vertices[F[2]] - mesh.vertices[F[0]]);
+    const double len = n.norm();
+    I.face_normals[f] = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      const int v = F[k];
+      I.vertex_faces[v].push_back(f);
+      const Eigen::Vector3d e1 = mesh.vertices[F[(k + 1) % 3]] - mesh.vertices[v];
+      const Eigen::Vector3d e2 = mesh.vertices[F[(k + 2) % 3]] - mesh.vertices[v];
+      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
+      I.vertex_pseudonormals[v] += angle * I.face_normals[f];
+      auto [it, inserted] = edge_sum.try_emplace(EdgeKey(F[k], F[(k + 1) % 3]), I.face_normals[f]);
+      if (!inserted) it->second += I.face_normals[f];
+    }
+  }
+  I.edge_pseudonormals.resize(static_cast<std::size_t>(nf) * 3);
+  for (int f = 0; f < nf; ++f) {
+    const Face& F = mesh.faces[f];
+    for (int k = 0; k < 3; ++k) I.edge_pseudonormals[3 * f + k] = edge_sum.at(EdgeKey(F[k], F[(k + 1) % 3]));
+  }
+  I.vertex_index = std::make_unique<PointIndex>(mesh.vertices);
+
+  // Embree scene: float vertices shifted by the box centre.
+  I.device = SharedDevice();
+  RTCDevice device = I.device->device;
+  I.scene = rtcNewScene(device);
+  rtcSetSceneFlags(I.scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(I.scene, RTC_BUILD_QUALITY_HIGH);
+  if (nf > 0) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(geom, RTC_BUILD_QUALITY_HIGH);
+    auto* vb = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+    auto* ib = static_cast<unsigned*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), nf));
+    ThrowOnDeviceError(device, "allocating the mesh buffers");
+    for (int v = 0; v < nv; ++v) {
+      const Eigen::Vector3d p = mesh.vertices[v] - I.centre;
+      for (int k = 0; k < 3; ++k) vb[3 * v + k] = static_cast<float>(p[k]);
+    }
+    for (int f = 0; f < nf; ++f) {
+      for (int k = 0; k < 3; ++k) ib[3 * f + k] = static_cast<unsigned>(mesh.faces[f][k]);
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(I.scene, geom);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(I.scene);
+  ThrowOnDeviceError(device, "building the BVH");
+}
+
+MeshIndex::~MeshIndex() = default;
+
+RayHit MeshIndex::Raycast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_max,
+                          double t_min) const {
+  RayHit out;
+  const double len = direction.norm();
+  if (!(len > 0) || !(t_max > t_min) || mesh_.faces.empty()) return out;
+  const Eigen::Vector3d d = direction / len;
+  const Eigen::Vector3d o = origin - impl_->centre;
+  const double margin = impl_->Margin(origin);
+  float tnear = static_cast<float>(std::max(0.0, t_min - margin));
+  // A few retries step past hits that the double-precision refinement puts
+  // at or before t_min (e.g. a ray leaving the surface it starts on).
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    RTCRayHit rh;
+    rh.ray.org_x = static_cast<float>(o.x());
+    rh.ray.org_y = static_cast<float>(o.y());
+    rh.ray.org_z = static_cast<float>(o.z());
+    rh.ray.dir_x = static_cast<float>(d.x());
+    rh.ray.dir_y = static_cast<float>(d.y());
+    rh.ray.dir_z = static_cast<float>(d.z());
+    rh.ray.tnear = tnear;
+    rh.ray.tfar = FloatAtLeast(t_max + margin);
+    rh.ray.time = 0;
+    rh.ray.mask = 0xFFFFFFFFu;
+    rh.ray.id = 0;
+    rh.ray.flags = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &context, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
+
+    // Re-intersect the face's plane in double (Moeller-Trumbore's t).
+    const int f = static_cast<int>(rh.hit.primID);
+    const Face& F = mesh_.faces[f];
+    const Eigen::Vector3d& v0 = mesh_.vertices[F[0]];
+    const Eigen::Vector3d e1 = mesh_.vertices[F[1]] - v0;
+    const Eigen::Vector3d e2 = mesh_.vertices[F[2]] - v0;
+    const Eigen::Vector3d pvec = d.cross(e2);
+    const double det = e1.dot(pvec);
+    double t = rh.ray.tfar;
+    if (det != 0) t = (origin - v0).cross(e1).dot(e2) / det;
+    if (t > t_min) {
+      if (t > t_max) return out;
+      out.hit = true;
+      out.range = t;
+      out.point = origin + t * d;
+      out.face = f;
+      return out;
+    }
+    tnear = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
+  }
+  return out;
+}
+
+ClosestPoint MeshIndex::Closest(const Eigen::Vector3d& q, int hint_face) const {
+  ClosestPoint out;
+  if (mesh_.faces.empty()) return out;
+  const ClosestSearch s = impl_->Search(mesh_, q, hint_face);
+  out.point = q + s.best_offset;
+  out.face = s.best_face;
+  out.distance = std::sqrt(s.best_d2);
+  return out;
+}
+
+SurfaceDistance MeshIndex::OrthogonalSignedDistance(const Eigen::Vector3d& q, SurfaceLookup lookup,
+                                                    int hint_face) const {
+  SurfaceDistance out;
+  if (mesh_.faces.empty()) return out;
+  if (lookup == SurfaceLookup::kNearestVertex) {
+    // The paper's: p = the nearest vertex, n = the normal of a face using it.
+    const auto nearest = impl_->vertex_index->Nearest(q, 1);
+    int v = nearest.empty() ? -1 : nearest[0].first;
+    if (v >= 0 && impl_->vertex_faces[v].empty()) {
+      // An unreferenced vertex: fall back to the closest face's first corner.
+      v = mesh_.faces[Closest(q, hint_face).face][0];
+    }
+    out.face = impl_->vertex_faces[v].front();
+    out.point = mesh_.vertices[v];
+  } else {
+    const ClosestPoint c = Closest(q, hint_face);
+    out.face = c.face;
+    out.point = c.point;
+  }
+  out.normal = impl_->face_normals[out.face];
+  out.signed_distance = (q - out.point).dot(out.normal);
+  return out;
+}
+
+SurfaceDistance MeshIndex::OrthogonalSignedDistance(const Pose& x_gM, const Eigen::Vector3d& l_g, SurfaceLookup lookup,
+                                                    int hint_face) const {
+  // H = (-)x_gM maps g into M.
+  return OrthogonalSignedDistance(x_gM.Inverse() * l_g, lookup, hint_face);
+}
+
+double MeshIndex::SignedDistance(const Eigen::Vector3d& q, int hint_face) const {
+  if (mesh_.faces.empty()) return std::numeric_limits<double>::infinity();
+  const ClosestSearch s = impl_->Search(mesh_, q, hint_face);
+  const int f = s.best_face;
+  Eigen::Vector3d pseudonormal;
+  switch (s.best_feature) {
+    case kInterior:
+      pseudonormal = impl_->face_normals[f];
+      break;
+    case kEdge0:
+    case kEdge1:
+    case kEdge2:
+      pseudonormal = impl_->edge_pseudonormals[3 * f + (s.best_feature - kEdge0)];
+      break;
+    default:
+      pseudonormal = impl_->vertex_pseudonormals[mesh_.faces[f][s.best_feature - kVertex0]];
+      break;
+  }
+  const double d = std::sqrt(s.best_d2);
+  return s.best_offset.dot(pseudonormal) > 0 ? -d : d;
+}
+
+int MeshIndex::NearestVertex(const Eigen::Vector3d& q) const {
+  const auto nearest = impl_->vertex_index->Nearest(q, 1);
+  return nearest.empty() ? -1 : nearest[0].first;
+}
+
+const std::vector<int>& MeshIndex::FacesOfVertex(int v) const { return impl_->vertex_faces.at(v); }
+
+}  // namespace hull
