@@ -1,0 +1,109 @@
+// hullinspect-cli info: summarise a survey bundle, acoustic sequence or mesh.
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "geometry/mesh_io.h"
+#include "survey/acoustic_sequence.h"
+#include "survey/survey_io.h"
+
+namespace hull::cli {
+namespace {
+
+const char* kHelp = R"(usage: hullinspect-cli info PATH [--scale S]
+
+Summarises a survey bundle (folder with survey.json), an acoustic sequence
+(folder with sonar.json) or a mesh file (STL, PLY, OBJ, OFF, glTF, ... also
+.gz). --scale applies a scale to a mesh on load (e.g. 59.4 for the DTC model).
+)";
+
+void BundleInfo(const SurveyBundle& b) {
+  const auto& m = b.manifest;
+  std::printf("survey bundle   %s\n", b.directory.c_str());
+  std::printf("name            %s\n", m.name.c_str());
+  std::printf("vehicle         %s\n", m.vehicle.c_str());
+  std::printf("camera          %s %dx%d, fx %.1f fy %.1f\n", m.camera.stereo() ? "stereo" : "mono", m.camera.width,
+              m.camera.height, m.camera.top.fx, m.camera.top.fy);
+  std::printf("model hint      %s\n", m.model_hint ? m.model_hint->c_str() : "(none)");
+  std::printf("model pose      %s\n", m.model_pose_guess ? "guess given" : "none: align DVL returns (GICP)");
+  const double span = b.nav.empty() ? 0.0 : b.nav.back().t - b.nav.front().t;
+  std::printf("keyframes       %zu over %.1f s\n", b.nav.size(), span);
+  std::printf("odometry        %zu links\n", b.odometry.size());
+  std::size_t returns = 0;
+  for (const auto& d : b.dvl) {
+    for (double r : d.range) returns += DvlRecord::HasReturn(r);
+  }
+  std::printf("DVL             %zu rows, %zu of %zu beams returned\n", b.dvl.size(), returns, 4 * b.dvl.size());
+  std::printf("features        %zu observations of %zu landmarks\n", b.features.size(), b.CountLandmarks());
+  std::printf("landmarks.csv   %s\n", b.landmarks ? "present" : "absent (triangulated from the initial poses)");
+  if (b.truth) {
+    std::printf("truth           %zu poses, %zu landmarks, %zu objects\n", b.truth->poses.size(),
+                b.truth->landmarks.size(), b.truth->objects.size());
+  } else {
+    std::printf("truth           absent\n");
+  }
+  if (b.sonar) std::printf("sonar           %d steps\n", b.sonar->num_steps());
+}
+
+void SequenceInfo(const AcousticSequence& s, const std::string& path) {
+  std::set<std::int64_t> features;
+  for (const auto& m : s.measurements) features.insert(m.feature);
+  std::printf("acoustic sequence %s\n", path.c_str());
+  std::printf("steps           %d\n", s.num_steps());
+  std::printf("features        %zu, measurements %zu\n", features.size(), s.measurements.size());
+  std::printf("sensor          range %.2f..%.2f m, azimuth fov %.1f deg, elevation fov %.1f deg\n", s.sensor.range_min,
+              s.sensor.range_max, s.sensor.azimuth_fov * 180 / M_PI, s.sensor.elevation_fov * 180 / M_PI);
+  std::printf("truth           %s\n", s.truth ? "present" : "absent");
+}
+
+void MeshInfo(const std::string& path, double scale) {
+  MeshLoadOptions lo;
+  lo.scale = scale;
+  OrientationReport rep;
+  lo.orientation = &rep;
+  const TriangleMesh m = LoadMesh(path, lo);
+  const auto box = m.Bounds();
+  std::printf("mesh            %s\n", path.c_str());
+  std::printf("vertices        %zu\n", m.num_vertices());
+  std::printf("triangles       %zu\n", m.num_faces());
+  std::printf("bounds          [%.3f %.3f %.3f] .. [%.3f %.3f %.3f]\n", box.min().x(), box.min().y(), box.min().z(),
+              box.max().x(), box.max().y(), box.max().z());
+  std::printf("size            %.3f x %.3f x %.3f\n", box.sizes().x(), box.sizes().y(), box.sizes().z());
+  std::printf("area            %.3f\n", m.SurfaceArea());
+  std::printf("closed          %s (%d boundary edges, %d non-manifold edges, %d components)\n",
+              rep.closed ? "yes" : "no", rep.boundary_edges, rep.non_manifold_edges, rep.components);
+  if (rep.closed) std::printf("volume          %.3f\n", m.SignedVolume());
+  std::printf("orientation     %s%s\n", rep.faces_flipped ? "fixed: " : "consistent, outward",
+              rep.faces_flipped ? (std::to_string(rep.faces_flipped) + " faces flipped").c_str() : "");
+  for (const auto& [name, values] : m.vertex_scalars) std::printf("vertex scalar   %s\n", name.c_str());
+}
+
+}  // namespace
+
+int RunInfo(const CommandArgs& argv) {
+  Args a(argv, {});
+  if (a.Has("help")) {
+    std::fputs(kHelp, stdout);
+    return kExitOk;
+  }
+  a.AllowOnly({"scale"});
+  if (a.positionals().size() != 1) throw UsageError("expected one path");
+  const std::string path = a.positionals()[0];
+  namespace fs = std::filesystem;
+  if (fs::is_directory(path)) {
+    if (fs::exists(fs::path(path) / "survey.json")) {
+      BundleInfo(ReadSurveyBundle(path));
+    } else if (fs::exists(fs::path(path) / "sonar.json")) {
+      SequenceInfo(ReadAcousticSequence(path), path);
+    } else {
+      throw InputError({path, 0, 0, ""}, "holds neither survey.json nor sonar.json");
+    }
+  } else {
+    MeshInfo(path, a.GetDouble("scale", 1.0));
+  }
+  return kExitOk;
+}
+
+}  // namespace hull::cli
