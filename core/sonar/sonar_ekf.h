@@ -1,0 +1,219 @@
+// The EKF of Mai et al., "3-D Reconstruction of Underwater Object Based on
+// Extended Kalman Filter by Using Acoustic Camera Images": the state is the
+// sonar pose and the features' 3-D positions,
+//   X = [x_c (x, y, z, roll, pitch, yaw), l_1 ... l_n (x, y, z each)],
+// with the full covariance P (eq. 1-5). Each step
+//   predicts   X^ = g(u, X) = x_c (+) u,   P^ = G P G^T + R       (eq. 6-7)
+//   updates    with every in-state feature measured at the step      (eq. 8-13)
+// where R is the contract's motion noise (proportional to the motion,
+// component by component) mapped through dg/du, the azimuth innovations are
+// wrapped and the covariance update is the Joseph form, kept symmetric.
+//
+// A feature enters the state when first seen, in one of two ways:
+//  - kPaper: at elevation 0 with sigma_phi = elevation_fov / 4, the
+//    covariance built by propagating range, azimuth and elevation
+//    uncertainty and the pose covariance through the inverse model (with the
+//    cross-covariances to the rest of the state);
+//  - kHypotheses (ours): a Gaussian sum over the elevation, delayed. The
+//    first view fixes a 1-D family of points (range and azimuth known,
+//    elevation not); K Gaussian hypotheses N(phi_k, (spacing/2)^2) tile the
+//    elevation fan. Each later view re-weighs them by its likelihood (the
+//    poses of the views are kept in the state as stochastic clones, so the
+//    relative pose's uncertainty and correlations are exact) and the unlikely
+//    ones are pruned. Once the best hypothesis and its neighbours hold
+//    collapse_probability of the weight, the feature enters the state from
+//    the first view with their merged Gaussian as elevation prior, and the
+//    views of the waiting time are replayed as EKF updates against their
+//    clones, so no measurement is lost. Every hypothesis is narrow, so the
+//    linearisation stays valid where the paper's single wide Gaussian is
+//    linearised far from the truth (e.g. a sonar above the object, where
+//    every true elevation has the same sign). After max_delay_steps the
+//    feature enters with the whole fan as prior (the paper's start, delayed).
+// Cost per step: the update touches only the pose and the measured features'
+// columns to form P H^T, then one symmetric rank-2m correction of P
+// (O(N^2 m) for a state of size N and m scalar measurements).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "geometry/pose.h"
+#include "survey/acoustic_sequence.h"
+
+namespace hull {
+
+enum class SonarInit {
+  kPaper,       // elevation 0, sigma_phi = elevation_fov / 4 (Mai et al.)
+  kHypotheses,  // delayed multi-hypothesis elevation (ours)
+};
+// "paper" / "hypotheses"; ParseSonarInit throws OptionError on another name.
+const char* SonarInitName(SonarInit init);
+SonarInit ParseSonarInit(const std::string& name);
+
+struct SonarEkfOptions {
+  // How a feature enters the state when first seen.
+  SonarInit init = SonarInit::kHypotheses;
+  // kPaper: the elevation's initial standard deviation as a fraction of the
+  // full elevation field of view (the paper's "fan": 1/4).
+  double paper_elevation_sigma_fraction = 0.25;
+  // kHypotheses: number of elevation hypotheses tiling the fan (>= 3); each
+  // has a standard deviation of half the spacing, elevation_fov / hypotheses.
+  int hypotheses = 9;
+  // kHypotheses: a feature enters the state once the most probable hypothesis
+  // and its two neighbours hold this share of the weight...
+  double collapse_probability = 0.99;
+  // ... and it has been seen in at least this many views after the first.
+  int min_extra_views = 1;
+  // kHypotheses: after this many steps since the first view a feature enters
+  // with the whole fan as its elevation prior, however vague its weights.
+  int max_delay_steps = 8;
+  // kHypotheses: hypotheses whose weight falls below this fraction of the
+  // best one's are dropped.
+  double prune_ratio = 1e-4;
+  // Joseph-form covariance update (true) or the shorter P - M S^-1 M^T (false).
+  bool joseph = true;
+
+  // True when every field is usable; otherwise false and, when why is given,
+  // the field and the reason.
+  bool Check(std::string* why = nullptr) const;
+};
+
+// One feature's estimate.
+struct SonarFeatureEstimate {
+  std::int64_t id = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+  // False while kHypotheses still weighs its elevation: position and
+  // covariance are then the moments of the hypothesis mixture (not in the state).
+  bool in_state = true;
+  int observations = 0;         // measurements of it so far (the first included)
+  std::int64_t first_step = 0;  // when it was first seen
+};
+
+// What one Step() did.
+struct SonarStepEstimate {
+  std::int64_t step = 0;
+  Vector6d pose = Vector6d::Zero();
+  Matrix6d pose_covariance = Matrix6d::Zero();
+  int measurements = 0;  // measurements given at the step
+  int updated = 0;       // of which used in the EKF update (in-state features)
+  int initialised = 0;   // features that entered the state at the step
+  int pending = 0;       // features still waiting for their elevation (kHypotheses)
+  double nis = 0;        // normalised innovation squared of the update
+  int nis_dof = 0;       // its degrees of freedom (2 per used measurement)
+};
+
+class SonarEkf {
+ public:
+  // Throws OptionError when options.Check() fails.
+  SonarEkf(const SonarSensor& sensor, const SonarMotionNoise& motion_noise, const Vector6d& initial_pose,
+           const Vector6d& initial_pose_sigma, SonarEkfOptions options = {});
+  // Sensor, noise and initial pose from a sequence's manifest.
+  explicit SonarEkf(const AcousticSequence& seq, SonarEkfOptions options = {});
+
+  // One step of the filter, for online use: control is the motion from the
+  // previous step (nullptr on the first call, required afterwards, its step
+  // must be the next one); measurements are every feature seen at this step
+  // (their step must be this step's, each feature once). Throws
+  // std::invalid_argument on misuse. Returns the pose estimate after the step.
+  SonarStepEstimate Step(const SonarControl* control, const std::vector<SonarMeasurement>& measurements);
+
+  // The step of the last Step() call (-1 before the first).
+  std::int64_t step() const { return step_; }
+  Vector6d pose() const { return x_.head<6>(); }
+  Matrix6d pose_covariance() const { return P_.topLeftCorner<6, 6>(); }
+  // Every feature seen so far (in the state and pending), by id.
+  std::vector<SonarFeatureEstimate> Features() const;
+  std::optional<SonarFeatureEstimate> Feature(std::int64_t id) const;
+  int num_features_in_state() const { return static_cast<int>(features_.size()); }
+  int num_pending() const { return static_cast<int>(pending_.size()); }
+
+  // The raw state and covariance (pose first, then features and, with
+  // kHypotheses, anchor-pose clones in the order they were added).
+  const Eigen::VectorXd& state() const { return x_; }
+  const Eigen::MatrixXd& covariance() const { return P_; }
+  // Offset of a feature's 3 rows in the state, or -1 when it is not in the state.
+  int FeatureOffset(std::int64_t id) const;
+
+  const SonarEkfOptions& options() const { return options_; }
+  const SonarSensor& sensor() const { return sensor_; }
+
+ private:
+  struct FeatureSlot {
+    int offset = 0;
+    int observations = 0;
+    std::int64_t first_step = 0;
+  };
+  // A past pose kept in the state (stochastic cloning) while a waiting
+  // feature has a measurement from it.
+  struct Clone {
+    std::int64_t step = 0;
+    int offset = 0;
+    int users = 0;
+  };
+  struct View {
+    std::int64_t step = 0;
+    double range = 0, azimuth = 0;
+  };
+  // A feature waiting for its elevation (kHypotheses).
+  struct Pending {
+    std::int64_t id = 0;
+    std::vector<View> views;  // views[0] is the first (the anchor)
+    std::vector<int> cell;    // surviving hypotheses: index into the fan
+    std::vector<double> log_weight;
+  };
+  // One scalar-pair measurement for the update: the pose block it was taken
+  // from (0: the current pose, else a clone) and the feature's block.
+  struct Obs {
+    int pose_offset = 0;
+    int feature_offset = 0;
+    double range = 0, azimuth = 0;
+  };
+
+  void Predict(const SonarControl& control);
+  // Batch EKF update; returns the normalised innovation squared.
+  double Update(const std::vector<Obs>& obs);
+  // Appends blocks to the state: mean b, covariance of the new block B_bb and
+  // cross-covariance with the existing state C (rows: new, cols: old).
+  void Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb);
+  void RemoveBlock(int offset, int size);
+  // kPaper: every new feature of the step enters the state.
+  void InitialisePaper(const std::vector<const SonarMeasurement*>& fresh);
+  // kHypotheses.
+  double Spacing() const { return sensor_.elevation_fov / options_.hypotheses; }
+  double CellElevation(int cell) const { return -sensor_.elevation_fov / 2 + Spacing() * (cell + 0.5); }
+  int CloneOffset(std::int64_t step) const;
+  void EnsureClone();  // a clone of the current pose for this step
+  void WeighPending(Pending& pd, const SonarMeasurement& m) const;
+  // The merged Gaussian (mean, sigma) of the hypotheses within one cell of the
+  // best, and the share of the weight they hold.
+  struct Collapse {
+    double phi = 0, sigma = 0, mass = 0;
+  };
+  Collapse CollapseOf(const Pending& pd) const;
+  // Moments (mean, sigma) of the whole prior fan.
+  std::pair<double, double> FanMoments() const;
+  // Enters the given pending features (indices into pending_) with the given
+  // elevation priors and replays their views; returns the NIS of the replay
+  // and its degrees of freedom.
+  std::pair<double, int> PromotePending(const std::vector<std::size_t>& which,
+                                        const std::vector<std::pair<double, double>>& priors);
+  void ReleaseClones();
+  SonarFeatureEstimate PendingEstimate(const Pending& pd) const;
+
+  SonarSensor sensor_;
+  SonarMotionNoise motion_noise_;
+  SonarEkfOptions options_;
+  std::int64_t step_ = -1;
+  Eigen::VectorXd x_;
+  Eigen::MatrixXd P_;
+  std::unordered_map<std::int64_t, FeatureSlot> features_;
+  std::vector<Clone> clones_;
+  std::vector<Pending> pending_;
+};
+
+}  // namespace hull
