@@ -29,6 +29,19 @@ struct NewFeature {
   Eigen::Matrix3d polar_cov = Eigen::Matrix3d::Zero();
 };
 
+// Columns [c, c + W) of a symmetric matrix of which only the lower triangle is current.
+template <int W>
+Eigen::Matrix<double, Eigen::Dynamic, W> LowerColumns(const Eigen::MatrixXd& P, int c) {
+  const Eigen::Index N = P.rows();
+  Eigen::Matrix<double, Eigen::Dynamic, W> out(N, W);
+  for (int j = 0; j < W; ++j) {
+    const int col = c + j;
+    out.col(j).head(col) = P.row(col).head(col).transpose();
+    out.col(j).tail(N - col) = P.col(col).tail(N - col);
+  }
+  return out;
+}
+
 void WrapPoseAngles(Eigen::VectorXd& x, int offset) {
   for (int i = 3; i < 6; ++i) x[offset + i] = WrapAngle(x[offset + i]);
 }
@@ -58,6 +71,7 @@ bool SonarEkfOptions::Check(std::string* why) const {
   if (min_extra_views < 1) return fail("min_extra_views", "must be at least 1 (a second view)");
   if (max_delay_steps < 1) return fail("max_delay_steps", "must be at least 1");
   if (!(prune_ratio >= 0 && prune_ratio < 1)) return fail("prune_ratio", "must be in [0, 1)");
+  if (update_block < 1) return fail("update_block", "must be at least 1");
   return true;
 }
 
@@ -210,64 +224,99 @@ void SonarEkf::Predict(const SonarControl& control) {
 
 double SonarEkf::Update(const std::vector<Obs>& obs) {
   const int k = static_cast<int>(obs.size());
-  const int m = 2 * k;
   const Eigen::Index N = x_.size();
+  // Linearise every measurement once, at the predicted state x^ (eq. 8).
   // H has non-zeros only in each measurement's pose block (6 columns) and
   // feature block (3 columns): keep those 2x6 and 2x3 pieces instead of the
   // m x N matrix.
   std::vector<Eigen::Matrix<double, 2, 6>> Hp(static_cast<std::size_t>(k));
   std::vector<Eigen::Matrix<double, 2, 3>> Hl(static_cast<std::size_t>(k));
-  Eigen::VectorXd nu(m);
+  std::vector<Eigen::Vector2d> innovation(static_cast<std::size_t>(k));
   for (int i = 0; i < k; ++i) {
     const auto ui = static_cast<std::size_t>(i);
     const Obs& o = obs[ui];
     const Eigen::Vector2d z_hat =
         SonarMeasureJacobians(x_.segment<6>(o.pose_offset), x_.segment<3>(o.feature_offset), &Hp[ui], &Hl[ui]);
-    nu[2 * i] = o.range - z_hat[0];
-    nu[2 * i + 1] = WrapAngle(o.azimuth - z_hat[1]);
+    innovation[ui] = Eigen::Vector2d(o.range - z_hat[0], WrapAngle(o.azimuth - z_hat[1]));
   }
-  // M = P H^T (N x m): 9 columns of P per measurement.
-  Eigen::MatrixXd M(N, m);
-  for (int i = 0; i < k; ++i) {
-    const auto ui = static_cast<std::size_t>(i);
-    M.middleCols<2>(2 * i).noalias() = P_.middleCols<6>(obs[ui].pose_offset) * Hp[ui].transpose();
-    M.middleCols<2>(2 * i).noalias() += P_.middleCols<3>(obs[ui].feature_offset) * Hl[ui].transpose();
+  const Eigen::VectorXd x_bar = x_;
+  // The measurements are independent given the state, so processing them in
+  // blocks with the same linearisation gives exactly the batch update of eq.
+  // 11-13, with the innovation of a later block taken through the linear
+  // model, z - h(x^) - H (x - x^). Blocks keep the m x m solves small; each
+  // block costs O(N^2 m_b). Only the lower triangle of P is kept current
+  // until the end.
+  const int block = options_.update_block;
+  double nis = 0;
+  for (int b0 = 0; b0 < k; b0 += block) {
+    const int kb = std::min(block, k - b0), m = 2 * kb;
+    Eigen::VectorXd nu(m);
+    for (int i = 0; i < kb; ++i) {
+      const auto ui = static_cast<std::size_t>(b0 + i);
+      const Obs& o = obs[ui];
+      Vector6d dpose = x_.segment<6>(o.pose_offset) - x_bar.segment<6>(o.pose_offset);
+      for (int a = 3; a < 6; ++a) dpose[a] = WrapAngle(dpose[a]);
+      const Eigen::Vector3d dl = x_.segment<3>(o.feature_offset) - x_bar.segment<3>(o.feature_offset);
+      nu.segment<2>(2 * i) = innovation[ui] - Hp[ui] * dpose - Hl[ui] * dl;
+      nu[2 * i + 1] = WrapAngle(nu[2 * i + 1]);
+    }
+    // M = P H^T (N x m): 9 columns of P per measurement (the pose columns
+    // once per distinct pose block).
+    std::vector<std::pair<int, Eigen::Matrix<double, Eigen::Dynamic, 6>>> pose_cols;
+    Eigen::MatrixXd M(N, m);
+    for (int i = 0; i < kb; ++i) {
+      const Obs& o = obs[static_cast<std::size_t>(b0 + i)];
+      auto it =
+          std::find_if(pose_cols.begin(), pose_cols.end(), [&](const auto& c) { return c.first == o.pose_offset; });
+      if (it == pose_cols.end()) {
+        pose_cols.emplace_back(o.pose_offset, LowerColumns<6>(P_, o.pose_offset));
+        it = pose_cols.end() - 1;
+      }
+      const auto ui = static_cast<std::size_t>(b0 + i);
+      M.middleCols<2>(2 * i).noalias() = it->second * Hp[ui].transpose();
+      M.middleCols<2>(2 * i).noalias() += LowerColumns<3>(P_, o.feature_offset) * Hl[ui].transpose();
+    }
+    // S = H P H^T + Q (m x m).
+    Eigen::MatrixXd S(m, m);
+    for (int i = 0; i < kb; ++i) {
+      const auto ui = static_cast<std::size_t>(b0 + i);
+      S.middleRows<2>(2 * i).noalias() = Hp[ui] * M.middleRows<6>(obs[ui].pose_offset);
+      S.middleRows<2>(2 * i).noalias() += Hl[ui] * M.middleRows<3>(obs[ui].feature_offset);
+    }
+    S = (0.5 * (S + S.transpose())).eval();
+    for (int i = 0; i < kb; ++i) {
+      S(2 * i, 2 * i) += sensor_.range_sigma * sensor_.range_sigma;
+      S(2 * i + 1, 2 * i + 1) += sensor_.azimuth_sigma * sensor_.azimuth_sigma;
+    }
+    const Eigen::LLT<Eigen::MatrixXd> llt(S);
+    if (llt.info() != Eigen::Success) {
+      throw std::runtime_error("SonarEkf: innovation covariance is not positive definite");
+    }
+    // W = L^-1 M^T with S = L L^T: M S^-1 M^T = W^T W, K^T = L^-T W.
+    const Eigen::MatrixXd W = llt.matrixL().solve(M.transpose());
+    const Eigen::VectorXd w = llt.matrixL().solve(nu);
+    nis += w.squaredNorm();
+    if (options_.joseph) {
+      // Joseph form (I - KH) P (I - KH)^T + K Q K^T = P - K M^T - M K^T + K S K^T
+      //   = P - K Z^T - Z K^T with Z = M - K S / 2: valid for any gain and,
+      // unlike the short form, insensitive to first order to errors in K.
+      // One symmetric rank-2m correction of the lower triangle.
+      const Eigen::MatrixXd K = llt.matrixU().solve(W).transpose();
+      x_.noalias() += K * nu;
+      Eigen::MatrixXd A(N, 2 * m), B(N, 2 * m);
+      A.leftCols(m) = K;
+      A.rightCols(m).noalias() = M - 0.5 * K * S;
+      B.leftCols(m) = A.rightCols(m);
+      B.rightCols(m) = K;
+      P_.triangularView<Eigen::Lower>() -= A * B.transpose();
+    } else {
+      // Short form P - M S^-1 M^T = P - W^T W (a symmetric rank-m downdate).
+      x_.noalias() += W.transpose() * w;
+      P_.selfadjointView<Eigen::Lower>().rankUpdate(W.transpose(), -1.0);
+    }
   }
-  // S = H P H^T + Q (m x m).
-  Eigen::MatrixXd S(m, m);
-  for (int i = 0; i < k; ++i) {
-    const auto ui = static_cast<std::size_t>(i);
-    S.middleRows<2>(2 * i).noalias() = Hp[ui] * M.middleRows<6>(obs[ui].pose_offset);
-    S.middleRows<2>(2 * i).noalias() += Hl[ui] * M.middleRows<3>(obs[ui].feature_offset);
-  }
-  S = (0.5 * (S + S.transpose())).eval();
-  for (int i = 0; i < k; ++i) {
-    S(2 * i, 2 * i) += sensor_.range_sigma * sensor_.range_sigma;
-    S(2 * i + 1, 2 * i + 1) += sensor_.azimuth_sigma * sensor_.azimuth_sigma;
-  }
-  const Eigen::LLT<Eigen::MatrixXd> llt(S);
-  if (llt.info() != Eigen::Success)
-    throw std::runtime_error("SonarEkf: innovation covariance is not positive definite");
-  // K = M S^-1 (N x m).
-  const Eigen::MatrixXd K = llt.solve(M.transpose()).transpose();
-  const double nis = nu.dot(llt.solve(nu));
-  x_.noalias() += K * nu;
   WrapPoseAngles(x_, 0);
   for (const Clone& c : clones_) WrapPoseAngles(x_, c.offset);
-  // Joseph form (I - KH) P (I - KH)^T + K Q K^T = P - K M^T - M K^T + K S K^T
-  //   = P - K Z^T - Z K^T with Z = M - K S / 2,
-  // valid for any gain; one symmetric rank-2m correction of the lower half.
-  // The short form P - M S^-1 M^T = P - K M^T holds for the optimal gain only.
-  if (options_.joseph) {
-    Eigen::MatrixXd A(N, 2 * m), B(N, 2 * m);
-    A.leftCols(m) = K;
-    A.rightCols(m).noalias() = M - 0.5 * K * S;
-    B.leftCols(m) = A.rightCols(m);
-    B.rightCols(m) = K;
-    P_.triangularView<Eigen::Lower>() -= A * B.transpose();
-  } else {
-    P_.triangularView<Eigen::Lower>() -= K * M.transpose();
-  }
   P_.triangularView<Eigen::StrictlyUpper>() = P_.transpose();
   for (Eigen::Index i = 0; i < N; ++i) {
     if (!(P_(i, i) > 0)) throw std::runtime_error("SonarEkf: the covariance lost positive definiteness");

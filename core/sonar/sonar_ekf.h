@@ -30,8 +30,9 @@
 //    every true elevation has the same sign). After max_delay_steps the
 //    feature enters with the whole fan as prior (the paper's start, delayed).
 // Cost per step: the update touches only the pose and the measured features'
-// columns to form P H^T, then one symmetric rank-2m correction of P
-// (O(N^2 m) for a state of size N and m scalar measurements).
+// columns to form P H^T, then symmetric low-rank corrections of P, in blocks
+// of update_block features (O(N^2 m) for a state of size N and m scalar
+// measurements; the Joseph form costs twice the short form).
 #pragma once
 
 #include <Eigen/Core>
@@ -76,6 +77,10 @@ struct SonarEkfOptions {
   double prune_ratio = 1e-4;
   // Joseph-form covariance update (true) or the shorter P - M S^-1 M^T (false).
   bool joseph = true;
+  // Measurements (features) per block of the update: the result is the batch
+  // update whatever the block (up to rounding); blocks only bound the cost of
+  // the innovation solves (O(N m_b^2) each instead of O(N m^2)).
+  int update_block = 16;
 
   // True when every field is usable; otherwise false and, when why is given,
   // the field and the reason.

@@ -40,6 +40,10 @@ TEST(SonarEkfOptions, CheckNamesTheField) {
   o.paper_elevation_sigma_fraction = 0;
   EXPECT_FALSE(o.Check(&why));
   o = SonarEkfOptions();
+  o.update_block = 0;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why.rfind("update_block:", 0), 0u) << why;
+  o = SonarEkfOptions();
   o.max_delay_steps = 0;
   EXPECT_FALSE(o.Check());
   const AcousticSequence seq = Prism(1);
@@ -117,6 +121,32 @@ TEST(SonarEkf, JosephAndShortFormAgree) {
     for (std::size_t i = 0; i < ra.final_features.size(); ++i) {
       EXPECT_LT((ra.final_features[i].position - rb.final_features[i].position).norm(), 1e-9);
       EXPECT_LT((ra.final_features[i].covariance - rb.final_features[i].covariance).cwiseAbs().maxCoeff(), 1e-12);
+    }
+  }
+}
+
+TEST(SonarEkf, UpdateBlocksGiveTheBatchUpdate) {
+  // The block size only splits the same linearised update: 1, 3 and all
+  // measurements at once agree to rounding.
+  SonarSimulationOptions so;
+  so.seed = 9;
+  so.extra_features = 40;
+  const AcousticSequence seq = SimulateSonar(so);
+  std::vector<SonarRunResult> runs;
+  for (int block : {1, 3, 1000}) {
+    SonarRunOptions o;
+    o.ekf.init = SonarInit::kPaper;
+    o.ekf.update_block = block;
+    runs.push_back(RunSonarSequence(seq, o));
+  }
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    ASSERT_EQ(runs[r].final_features.size(), runs[0].final_features.size());
+    EXPECT_LT((runs[r].steps.back().estimate.pose - runs[0].steps.back().estimate.pose).norm(), 1e-9);
+    EXPECT_NEAR(runs[r].steps.back().estimate.nis, runs[0].steps.back().estimate.nis, 1e-6);
+    for (std::size_t i = 0; i < runs[0].final_features.size(); ++i) {
+      EXPECT_LT((runs[r].final_features[i].position - runs[0].final_features[i].position).norm(), 1e-9);
+      EXPECT_LT((runs[r].final_features[i].covariance - runs[0].final_features[i].covariance).cwiseAbs().maxCoeff(),
+                1e-12);
     }
   }
 }
