@@ -164,6 +164,7 @@ struct Consistency {
   double worst = 0;  // largest normalised NEES (sum NEES / sum dof)
   double final_ratio = 0;
   double final_lo = 0, final_hi = 0;
+  double final_error = 0;  // median over the runs of the final mean feature error
 };
 
 // Joint NEES (pose and in-state features) summed over kNeesRuns runs at each
@@ -171,8 +172,10 @@ struct Consistency {
 Consistency MeasureConsistency(SonarPreset preset, SonarInit init, int runs) {
   std::vector<double> nees, dof;
   std::vector<int> count;
+  std::vector<double> final_error;
   for (int run = 0; run < runs; ++run) {
     const SonarRunResult r = RunPreset(preset, init, 101 + static_cast<std::uint64_t>(run));
+    final_error.push_back(r.steps.back().errors->mean_feature_error);
     nees.resize(r.steps.size());
     dof.resize(r.steps.size());
     count.resize(r.steps.size());
@@ -203,8 +206,11 @@ Consistency MeasureConsistency(SonarPreset preset, SonarInit init, int runs) {
     std::snprintf(buf, sizeof(buf), " %zu:%.2f", k, ratio);
     line += buf;
   }
-  std::printf("%s\n  interval at the last step [%.2f, %.2f]; %d of %d steps inside, %d above; worst %.2f\n",
-              line.c_str(), c.final_lo, c.final_hi, c.inside, c.steps, c.above, c.worst);
+  c.final_error = Median(final_error);
+  std::printf(
+      "%s\n  interval at the last step [%.2f, %.2f]; %d of %d steps inside, %d above; worst %.2f; "
+      "final mean feature error %.4f m (median)\n",
+      line.c_str(), c.final_lo, c.final_hi, c.inside, c.steps, c.above, c.worst, c.final_error);
   return c;
 }
 
