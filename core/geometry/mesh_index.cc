@@ -7,13 +7,14 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
+#include <thread>
 
 #include "geometry/point_index.h"
 
@@ -116,10 +117,19 @@ TrianglePoint ClosestOnTriangle(const Eigen::Vector3d& a, const Eigen::Vector3d&
   return best;
 }
 
-std::uint64_t EdgeKey(int a, int b) {
-  const auto lo = static_cast<std::uint64_t>(std::min(a, b));
-  const auto hi = static_cast<std::uint64_t>(std::max(a, b));
-  return (lo << 32) | hi;
+// Runs body(begin, end) over [0, n) in contiguous chunks on all cores.
+template <typename Body>
+void ParallelFor(int n, const Body& body) {
+  const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 16);
+  if (threads == 1 || n < 4096) {
+    body(0, n);
+    return;
+  }
+  const int chunk = (n + threads - 1) / threads;
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads && t * chunk < n; ++t) pool.emplace_back(body, t * chunk, std::min(n, (t + 1) * chunk));
+  body(0, std::min(n, chunk));
+  for (auto& t : pool) t.join();
 }
 
 // Smallest float >= x (x >= 0), so a float bound never undercuts a double one.
@@ -174,6 +184,32 @@ bool ClosestCallback(RTCPointQueryFunctionArguments* args) {
   return false;
 }
 
+// Per-vertex state of the clearance computation (see vertex_clearance).
+struct ClearanceSearch {
+  const TriangleMesh* mesh;
+  int v;
+  double margin;
+  double best_d2 = std::numeric_limits<double>::infinity();
+};
+
+bool ClearanceCallback(RTCPointQueryFunctionArguments* args) {
+  auto* s = static_cast<ClearanceSearch*>(args->userPtr);
+  const Face& F = s->mesh->faces[args->primID];
+  if (F[0] == s->v || F[1] == s->v || F[2] == s->v) return false;
+  const Eigen::Vector3d& x = s->mesh->vertices[s->v];
+  const double d2 =
+      ClosestOnTriangle(s->mesh->vertices[F[0]] - x, s->mesh->vertices[F[1]] - x, s->mesh->vertices[F[2]] - x)
+          .point.squaredNorm();
+  if (d2 >= s->best_d2) return false;
+  s->best_d2 = d2;
+  const float r = FloatAtLeast(std::sqrt(d2) + s->margin);
+  if (r < args->query->radius) {
+    args->query->radius = r;
+    return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 struct MeshIndex::Impl {
@@ -185,32 +221,37 @@ struct MeshIndex::Impl {
   std::vector<Eigen::Vector3d> edge_pseudonormals;   // 3 per face: edge k = F[k] -> F[k + 1]
   std::vector<Eigen::Vector3d> vertex_pseudonormals;
   std::vector<std::vector<int>> vertex_faces;
+  std::vector<int> star_offsets, star_faces;  // the same, flat: faces of v in [offsets[v], offsets[v + 1])
   std::unique_ptr<PointIndex> vertex_index;
+  // Clearance of vertex v: the distance from it to the nearest face that
+  // does not use it. For a face g that uses none of the corners of face f,
+  // and any corner v of f, |q - g| >= clearance(v) - |q - v|: the bound
+  // that lets a search around a (hinted) face prove its answer exact
+  // without a BVH traversal.
+  std::vector<double> vertex_clearance;
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
   }
+
+  struct Span {
+    const int* first;
+    const int* last;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+  };
+  Span Star(int v) const { return {star_faces.data() + star_offsets[v], star_faces.data() + star_offsets[v + 1]}; }
 
   // Absolute slack added to float bounds for a query at q: covers the float
   // rounding of the BVH's vertices and of q (relative 2^-24 each) with a
   // wide safety factor.
   double Margin(const Eigen::Vector3d& q) const { return 1e-6 * (extent + (q - centre).cwiseAbs().maxCoeff()) + 1e-30; }
 
-  // Exact closest point: a first bound from the hint face (or, without one,
-  // from the faces around the nearest vertex), then Embree's point query
-  // visits every face whose box lies within that bound, shrinking it.
-  ClosestSearch Search(const TriangleMesh& mesh, const Eigen::Vector3d& q, int hint_face) const {
-    ClosestSearch s{&mesh, q, Margin(q)};
-    if (hint_face >= 0 && hint_face < static_cast<int>(mesh.faces.size())) {
-      s.Offer(hint_face);
-    } else {
-      const auto nearest = vertex_index->Nearest(q, 1);
-      if (!nearest.empty()) {
-        for (int f : vertex_faces[nearest[0].first]) s.Offer(f);
-      }
-    }
+  // Point query of the BVH: offers every face whose box lies within the
+  // current best distance (plus the rounding margin), shrinking it.
+  void QueryBvh(ClosestSearch& s) const {
     RTCPointQuery query;
-    const Eigen::Vector3d qs = q - centre;
+    const Eigen::Vector3d qs = s.q - centre;
     query.x = static_cast<float>(qs.x());
     query.y = static_cast<float>(qs.y());
     query.z = static_cast<float>(qs.z());
@@ -219,6 +260,64 @@ struct MeshIndex::Impl {
     RTCPointQueryContext context;
     rtcInitPointQueryContext(&context);
     rtcPointQuery(scene, &query, &context, ClosestCallback, &s);
+  }
+
+  // Offers the faces around the given vertices, nearest vertex first,
+  // until the vertices' clearances prove that no face left out can be as
+  // near as the best found (true), or the vertices run out (false). The
+  // `done` vertices' faces were offered already (their bounds hold too).
+  bool SearchStars(ClosestSearch& s, const TriangleMesh& mesh, std::array<int, 3> vs, int n,
+                   std::array<int, 3> done = {-1, -1, -1}, int ndone = 0) const {
+    std::array<double, 3> dist{};
+    for (int k = 0; k < n; ++k) dist[k] = (s.q - mesh.vertices[vs[k]]).norm();
+    for (int k = 1; k < n; ++k) {
+      for (int j = k; j > 0 && dist[j] < dist[j - 1]; --j) {
+        std::swap(dist[j], dist[j - 1]);
+        std::swap(vs[j], vs[j - 1]);
+      }
+    }
+    double bound = -std::numeric_limits<double>::infinity();
+    for (int j = 0; j < ndone; ++j) {
+      bound = std::max(bound, vertex_clearance[done[j]] - (s.q - mesh.vertices[done[j]]).norm());
+    }
+    for (int k = 0; k < n; ++k) {
+      for (int g : Star(vs[k])) {
+        const Face& G = mesh.faces[g];
+        bool offered = false;
+        for (int j = 0; j < ndone; ++j) offered |= G[0] == done[j] || G[1] == done[j] || G[2] == done[j];
+        if (!offered) s.Offer(g);
+      }
+      done[ndone++] = vs[k];
+      bound = std::max(bound, vertex_clearance[vs[k]] - dist[k]);
+      if (bound - s.margin > std::sqrt(s.best_d2)) return true;
+    }
+    return false;
+  }
+
+  // Exact closest point. Starts around the hint face's corners (or the
+  // nearest vertex), where a near query is usually proven exact by the
+  // clearances; otherwise Embree's point query finishes the search from the
+  // bound found. Ties go to the lowest face index, so the answer never
+  // depends on the hint or the visiting order.
+  ClosestSearch Search(const TriangleMesh& mesh, const Eigen::Vector3d& q, int hint_face) const {
+    ClosestSearch s{&mesh, q, Margin(q)};
+    if (hint_face >= 0 && hint_face < static_cast<int>(mesh.faces.size())) {
+      if (SearchStars(s, mesh, mesh.faces[hint_face], 3)) return s;
+    } else {
+      const int v = vertex_index->NearestOne(q).first;
+      if (v < 0) return s;
+      if (SearchStars(s, mesh, {v, -1, -1}, 1)) return s;
+      if (s.best_face >= 0) {
+        // Then around the corners of the best face found.
+        std::array<int, 3> rest{};
+        int n = 0;
+        for (int c : mesh.faces[s.best_face]) {
+          if (c != v) rest[n++] = c;
+        }
+        if (SearchStars(s, mesh, rest, n, {v, -1, -1}, 1)) return s;
+      }
+    }
+    QueryBvh(s);
     return s;
   }
 };
@@ -241,36 +340,66 @@ MeshIndex::MeshIndex(const TriangleMesh& mesh) : mesh_(mesh), impl_(std::make_un
     I.extent = (box.max() - I.centre).cwiseAbs().maxCoeff();
   }
 
-  // Normals and the angle-weighted pseudonormals (Baerentzen and Aanaes):
-  // faces' unit normals summed over an edge's faces, and weighted by the
-  // incident angle at a vertex.
-  I.face_normals.resize(nf);
-  I.vertex_pseudonormals.assign(nv, Eigen::Vector3d::Zero());
-  I.vertex_faces.assign(nv, {});
-  std::unordered_map<std::uint64_t, Eigen::Vector3d> edge_sum;
-  edge_sum.reserve(static_cast<std::size_t>(nf) * 2);
-  for (int f = 0; f < nf; ++f) {
-    const Face& F = mesh.faces[f];
-    const Eigen::Vector3d n =
-        (mesh.vertices[F[1]] - mesh.vertices[F[0]]).cross(mesh.vertices[F[2]] - mesh.vertices[F[0]]);
-    const double len = n.norm();
-    I.face_normals[f] = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
-    for (int k = 0; k < 3; ++k) {
-      const int v = F[k];
-      I.vertex_faces[v].push_back(f);
-      const Eigen::Vector3d e1 = mesh.vertices[F[(k + 1) % 3]] - mesh.vertices[v];
-      const Eigen::Vector3d e2 = mesh.vertices[F[(k + 2) % 3]] - mesh.vertices[v];
-      const double angle = std::atan2(e1.cross(e2).norm(), e1.dot(e2));
-      I.vertex_pseudonormals[v] += angle * I.face_normals[f];
-      auto [it, inserted] = edge_sum.try_emplace(EdgeKey(F[k], F[(k + 1) % 3]), I.face_normals[f]);
-      if (!inserted) it->second += I.face_normals[f];
+  // Faces around each vertex (the star), as one flat array for the search
+  // and as vectors for FacesOfVertex.
+  I.star_offsets.assign(static_cast<std::size_t>(nv) + 1, 0);
+  for (const Face& F : mesh.faces) {
+    for (int v : F) ++I.star_offsets[v + 1];
+  }
+  for (int v = 0; v < nv; ++v) I.star_offsets[v + 1] += I.star_offsets[v];
+  I.star_faces.resize(static_cast<std::size_t>(nf) * 3);
+  {
+    std::vector<int> fill(I.star_offsets.begin(), I.star_offsets.end() - 1);
+    for (int f = 0; f < nf; ++f) {
+      for (int v : mesh.faces[f]) I.star_faces[fill[v]++] = f;
     }
   }
+  I.vertex_faces.resize(nv);
+  ParallelFor(nv, [&](int begin, int end) {
+    for (int v = begin; v < end; ++v) I.vertex_faces[v].assign(I.Star(v).begin(), I.Star(v).end());
+  });
+
+  // Normals and the angle-weighted pseudonormals (Baerentzen and Aanaes):
+  // the unit normals of an edge's faces summed, and those of a vertex's
+  // faces weighted by their angle at the vertex.
+  I.face_normals.resize(nf);
+  ParallelFor(nf, [&](int begin, int end) {
+    for (int f = begin; f < end; ++f) {
+      const Face& F = mesh.faces[f];
+      const Eigen::Vector3d n =
+          (mesh.vertices[F[1]] - mesh.vertices[F[0]]).cross(mesh.vertices[F[2]] - mesh.vertices[F[0]]);
+      const double len = n.norm();
+      I.face_normals[f] = len > 0 ? Eigen::Vector3d(n / len) : Eigen::Vector3d::Zero();
+    }
+  });
+  I.vertex_pseudonormals.assign(nv, Eigen::Vector3d::Zero());
+  ParallelFor(nv, [&](int begin, int end) {
+    for (int v = begin; v < end; ++v) {
+      for (int g : I.Star(v)) {
+        const Face& G = mesh.faces[g];
+        const int k = G[0] == v ? 0 : (G[1] == v ? 1 : 2);
+        const Eigen::Vector3d e1 = mesh.vertices[G[(k + 1) % 3]] - mesh.vertices[v];
+        const Eigen::Vector3d e2 = mesh.vertices[G[(k + 2) % 3]] - mesh.vertices[v];
+        I.vertex_pseudonormals[v] += std::atan2(e1.cross(e2).norm(), e1.dot(e2)) * I.face_normals[g];
+      }
+    }
+  });
   I.edge_pseudonormals.resize(static_cast<std::size_t>(nf) * 3);
-  for (int f = 0; f < nf; ++f) {
-    const Face& F = mesh.faces[f];
-    for (int k = 0; k < 3; ++k) I.edge_pseudonormals[3 * f + k] = edge_sum.at(EdgeKey(F[k], F[(k + 1) % 3]));
-  }
+  ParallelFor(nf, [&](int begin, int end) {
+    for (int f = begin; f < end; ++f) {
+      const Face& F = mesh.faces[f];
+      for (int k = 0; k < 3; ++k) {
+        // Every face on edge a-b is in a's star.
+        const int a = F[k], b = F[(k + 1) % 3];
+        Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+        for (int g : I.Star(a)) {
+          const Face& G = mesh.faces[g];
+          if (G[0] == b || G[1] == b || G[2] == b) sum += I.face_normals[g];
+        }
+        I.edge_pseudonormals[3 * static_cast<std::size_t>(f) + k] = sum;
+      }
+    }
+  });
   I.vertex_index = std::make_unique<PointIndex>(mesh.vertices);
 
   // Embree scene: float vertices shifted by the box centre.
@@ -300,6 +429,49 @@ MeshIndex::MeshIndex(const TriangleMesh& mesh) : mesh_(mesh), impl_(std::make_un
   }
   rtcCommitScene(I.scene);
   ThrowOnDeviceError(device, "building the BVH");
+
+  // Vertex clearances, exact in double, in parallel.
+  I.vertex_clearance.assign(nv, std::numeric_limits<double>::infinity());
+  if (nf > 0) {
+    const auto clearances = [&](int begin, int end) {
+      for (int v = begin; v < end; ++v) {
+        ClearanceSearch s{&mesh, v, I.Margin(mesh.vertices[v])};
+        // A first bound: a face across the edge opposite v in v's star.
+        const Eigen::Vector3d& x = mesh.vertices[v];
+        for (int g : I.Star(v)) {
+          const Face& G = mesh.faces[g];
+          int b = -1, c = -1;
+          for (int u : G) {
+            if (u != v) (b < 0 ? b : c) = u;
+          }
+          if (c < 0) continue;  // a degenerate face
+          for (int h : I.Star(b)) {
+            const Face& H = mesh.faces[h];
+            const bool has_c = H[0] == c || H[1] == c || H[2] == c;
+            const bool has_v = H[0] == v || H[1] == v || H[2] == v;
+            if (has_c && !has_v) {
+              s.best_d2 = std::min(s.best_d2, ClosestOnTriangle(mesh.vertices[H[0]] - x, mesh.vertices[H[1]] - x,
+                                                                mesh.vertices[H[2]] - x)
+                                                  .point.squaredNorm());
+            }
+          }
+          if (std::isfinite(s.best_d2)) break;
+        }
+        RTCPointQuery query;
+        const Eigen::Vector3d p = mesh.vertices[v] - I.centre;
+        query.x = static_cast<float>(p.x());
+        query.y = static_cast<float>(p.y());
+        query.z = static_cast<float>(p.z());
+        query.time = 0;
+        query.radius = FloatAtLeast(std::sqrt(s.best_d2) + s.margin);
+        RTCPointQueryContext context;
+        rtcInitPointQueryContext(&context);
+        rtcPointQuery(I.scene, &query, &context, ClearanceCallback, &s);
+        I.vertex_clearance[v] = std::sqrt(s.best_d2);
+      }
+    };
+    ParallelFor(nv, clearances);
+  }
 }
 
 MeshIndex::~MeshIndex() = default;
@@ -376,8 +548,7 @@ SurfaceDistance MeshIndex::OrthogonalSignedDistance(const Eigen::Vector3d& q, Su
   if (mesh_.faces.empty()) return out;
   if (lookup == SurfaceLookup::kNearestVertex) {
     // The paper's: p = the nearest vertex, n = the normal of a face using it.
-    const auto nearest = impl_->vertex_index->Nearest(q, 1);
-    int v = nearest.empty() ? -1 : nearest[0].first;
+    int v = impl_->vertex_index->NearestOne(q).first;
     if (v >= 0 && impl_->vertex_faces[v].empty()) {
       // An unreferenced vertex: fall back to the closest face's first corner.
       v = mesh_.faces[Closest(q, hint_face).face][0];
@@ -422,10 +593,7 @@ double MeshIndex::SignedDistance(const Eigen::Vector3d& q, int hint_face) const 
   return s.best_offset.dot(pseudonormal) > 0 ? -d : d;
 }
 
-int MeshIndex::NearestVertex(const Eigen::Vector3d& q) const {
-  const auto nearest = impl_->vertex_index->Nearest(q, 1);
-  return nearest.empty() ? -1 : nearest[0].first;
-}
+int MeshIndex::NearestVertex(const Eigen::Vector3d& q) const { return impl_->vertex_index->NearestOne(q).first; }
 
 const std::vector<int>& MeshIndex::FacesOfVertex(int v) const { return impl_->vertex_faces.at(v); }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 
 namespace hull {
 
@@ -48,6 +49,16 @@ std::vector<std::pair<int, double>> PointIndex::Nearest(const Eigen::Vector3d& q
   out.reserve(found);
   for (std::size_t i = 0; i < found; ++i) out.emplace_back(static_cast<int>(idx[i]), d2[i]);
   return out;
+}
+
+std::pair<int, double> PointIndex::NearestOne(const Eigen::Vector3d& q) const {
+  if (impl_->cloud.pts.empty()) return {-1, std::numeric_limits<double>::infinity()};
+  std::uint32_t index = 0;
+  double d2 = 0;
+  nanoflann::KNNResultSet<double, std::uint32_t> result(1);
+  result.init(&index, &d2);
+  impl_->tree.findNeighbors(result, q.data(), nanoflann::SearchParams());
+  return {static_cast<int>(index), d2};
 }
 
 std::vector<std::pair<int, double>> PointIndex::Within(const Eigen::Vector3d& q, double radius) const {

@@ -22,6 +22,9 @@ class PointIndex {
 
   // Indices of the k nearest points, nearest first, with squared distances.
   std::vector<std::pair<int, double>> Nearest(const Eigen::Vector3d& q, int k) const;
+  // The nearest point and its squared distance, without allocating;
+  // (-1, infinity) when the index is empty.
+  std::pair<int, double> NearestOne(const Eigen::Vector3d& q) const;
   // Indices of all points within radius (not squared), nearest first.
   std::vector<std::pair<int, double>> Within(const Eigen::Vector3d& q, double radius) const;
 

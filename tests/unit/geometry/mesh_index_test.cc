@@ -260,6 +260,36 @@ TEST(MeshIndexClosest, HintGivesTheIdenticalAnswer) {
   EXPECT_EQ(index.Closest(q, 1 << 30).face, index.Closest(q).face);
 }
 
+TEST(MeshIndexClosest, ThinPlatesAndSoupsStayExact) {
+  // Where the search around a hint cannot prove its answer (the other side
+  // of a 2 mm plate is nearer than the hint's neighbours; an unwelded soup
+  // has faces touching every vertex that do not use it), the BVH must
+  // finish the search: still brute-force exact, still hint-independent.
+  const TriangleMesh plate = test::Subdivide(test::Subdivide(MakeBox(Vector3d(0, 0, 0), Vector3d(1, 0.5, 0.002))));
+  const TriangleMesh sphere = MakeIcosphere(1.0, 2);
+  TriangleMesh soup;
+  for (const Face& f : sphere.faces) {
+    const int base = static_cast<int>(soup.vertices.size());
+    for (int k = 0; k < 3; ++k) soup.vertices.push_back(sphere.vertices[f[k]]);
+    soup.faces.push_back({base, base + 1, base + 2});
+  }
+  soup.ComputeNormals();
+  for (const TriangleMesh* m : {&plate, static_cast<const TriangleMesh*>(&soup)}) {
+    const MeshIndex index(*m);
+    std::mt19937 rng(31);
+    std::uniform_int_distribution<int> face(0, static_cast<int>(m->faces.size()) - 1);
+    for (const Vector3d& q : QueryPoints(*m, 900, rng)) {
+      const ClosestPoint c = index.Closest(q);
+      ASSERT_NEAR(c.distance, BruteDistance(*m, q), 1e-12);
+      for (const int hint : {c.face, face(rng)}) {
+        const ClosestPoint h = index.Closest(q, hint);
+        ASSERT_EQ(h.face, c.face);
+        ASSERT_EQ(h.point, c.point);
+      }
+    }
+  }
+}
+
 TEST(MeshIndexClosest, TiesGoToTheLowestFace) {
   // On the box's edge region both sides are equally near.
   const TriangleMesh box = MakeBox(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
