@@ -399,6 +399,11 @@ PlyHeader ReadPlyHeader(std::string_view data, const std::string& file) {
       if (e.name.empty()) cur.FailAtToken("expected an element name");
       const std::int64_t n = cur.Integer("the element count");
       if (n < 0) cur.FailAtToken("negative element count");
+      // Every record takes at least a byte: refuse counts the file cannot hold.
+      if (static_cast<std::uint64_t>(n) > data.size()) {
+        cur.FailAtToken("the header announces " + std::to_string(n) + " '" + e.name + "' records but the file has " +
+                        std::to_string(data.size()) + " bytes");
+      }
       e.count = static_cast<std::size_t>(n);
       h.elements.push_back(std::move(e));
     } else if (kw == "property") {
@@ -663,6 +668,9 @@ RawMesh ReadOff(std::string_view data, const std::string& file) {
   if (cur.AtLineEnd('#')) cur.SkipSpace('#');
   const std::int64_t nf = cur.Integer("the number of faces");
   if (nv < 0 || nf < 0) cur.FailAtToken("negative vertex or face count");
+  if (static_cast<std::uint64_t>(nv) + static_cast<std::uint64_t>(nf) > data.size()) {
+    cur.FailAtToken("the counts announce more vertices and faces than the file can hold");
+  }
   cur.NextLine();  // the edge count, if any, is not used
   RawMesh m;
   m.vertices.reserve(static_cast<std::size_t>(nv));

@@ -337,6 +337,11 @@ TEST_F(MeshIoTest, PlyAsciiErrorsNameTheLine) {
   EXPECT_THAT(LoadError(Write("n.ply", "plx\n")).detail(), HasSubstr("expected 'ply'"));
   EXPECT_THAT(LoadError(Write("h.ply", "ply\nformat ascii 1.0\nelement vertex 0\n")).detail(),
               HasSubstr("no 'end_header'"));
+  const InputError huge = LoadError(Write("huge.ply",
+                                          "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\n"
+                                          "property float x\nend_header\n"));
+  EXPECT_EQ(huge.where().line, 3);
+  EXPECT_THAT(huge.detail(), HasSubstr("announces 4000000000 'vertex' records"));
   const InputError fmt = LoadError(Write("f.ply", "ply\nformat binary 1.0\nend_header\n"));
   EXPECT_EQ(fmt.where().line, 2);
   EXPECT_THAT(fmt.detail(), HasSubstr("unknown PLY format 'binary'"));
@@ -415,6 +420,7 @@ TEST_F(MeshIoTest, OffWithCommentsAndAQuad) {
   EXPECT_EQ(idx.where().line, 6);
   EXPECT_EQ(idx.where().column, 7);
   EXPECT_THAT(LoadError(Write("m.off", "0FF\n")).detail(), HasSubstr("expected 'OFF'"));
+  EXPECT_THAT(LoadError(Write("big.off", "OFF\n900000000 1 0\n")).detail(), HasSubstr("more vertices and faces"));
 }
 
 // ---- assimp formats -----------------------------------------------------------------
