@@ -22,6 +22,8 @@ const Command kCommands[] = {
     {"simulate", hull::cli::RunSimulate, "write a simulated survey bundle or acoustic sequence with truth"},
     {"validate", hull::cli::RunValidate, "check a survey bundle or acoustic sequence against the contract"},
     {"info", hull::cli::RunInfo, "summarise a survey bundle, acoustic sequence or mesh"},
+    {"align", hull::cli::RunAlign, "initial model pose: align DVL returns to the mesh (GICP)"},
+    {"adjust", hull::cli::RunAdjust, "model-assisted bundle adjustment (naive, all-on-surface, max-mixture)"},
     {"sonar", hull::cli::RunSonar, "reconstruct features from an acoustic sequence with the sonar EKF"},
 };
 

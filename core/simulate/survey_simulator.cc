@@ -238,8 +238,13 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   if (o.camera == CameraType::kMono) man.camera.top_to_bottom.setZero();
   man.noise = o.noise;
   man.model_axes = ModelAxes{axes.forward, axes.up};
-  const Pose x_s_cT =
-      Pose::FromVector(man.camera.servo_to_top) * SmallRandomPose(rng, o.extrinsic_error_m, o.extrinsic_error_deg);
+  Pose x_s_cT;
+  {
+    // Nominal (+) error; the error's translation lies mostly along the camera's optical axis (z).
+    const Pose e = SmallRandomPose(rng, o.extrinsic_error_m * 0.35, o.extrinsic_error_deg);
+    const Eigen::Vector3d t = e.translation() + Eigen::Vector3d(0, 0, rng.Sign() * o.extrinsic_error_m * 0.9);
+    x_s_cT = Pose::FromVector(man.camera.servo_to_top) * Pose(e.quaternion(), t);
+  }
   const Pose x_cT_cB = Pose::FromVector(man.camera.top_to_bottom);
   const Pose x_s_d = Pose::FromVector(man.servo_to_dvl);
   const bool stereo = o.camera == CameraType::kStereo;

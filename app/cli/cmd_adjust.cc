@@ -1,0 +1,97 @@
+// hullinspect-cli adjust: model-assisted bundle adjustment of a survey.
+#include <cstdio>
+
+#include "adjust/bundle_adjuster.h"
+#include "adjust/evaluation.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/console_progress.h"
+#include "geometry/mesh_io.h"
+#include "survey/survey_io.h"
+
+namespace hull::cli {
+namespace {
+
+const char* kHelp = R"(usage: hullinspect-cli adjust BUNDLE --out DIR [options]
+
+Model-assisted bundle adjustment (Ozog et al.): vehicle poses, servo angles,
+camera extrinsic, model pose and landmarks, with a surface constraint on every
+landmark. Writes the results folder (docs/results-format.md).
+
+options:
+  --mesh PATH          prior mesh (default: the bundle's model_hint)
+  --mesh-scale S       scale applied to the mesh on load
+  --model NAME         max-mixture (default), all-on-surface or naive
+  --sigma0 M           off-model sigma (default 1.0)
+  --sigma1 M           on-model sigma (default 0.02)
+  --lookup NAME        closest-face (default) or nearest-vertex (the paper's)
+  --max-iterations N   Levenberg-Marquardt iterations (default 100)
+  --threads N          0: all cores (default)
+  --no-servo           hold the servo angles at their measurements
+  --no-extrinsic       hold the camera extrinsic at its nominal value
+  --no-dvl             leave out the DVL raycast factors
+  --evaluate           compare with the bundle's truth/ and print the figures
+  --verbose            print Ceres' per-iteration log
+  --quiet              no progress output
+The initial model pose is the bundle's model_pose_guess, or the GICP
+alignment of the DVL returns when it has none (see 'align').
+)";
+
+}  // namespace
+
+int RunAdjust(const CommandArgs& argv) {
+  Args a(argv, {"no-servo", "no-extrinsic", "no-dvl", "evaluate", "verbose", "quiet"});
+  if (a.Has("help")) {
+    std::fputs(kHelp, stdout);
+    return kExitOk;
+  }
+  a.AllowOnly({"mesh", "mesh-scale", "model", "sigma0", "sigma1", "lookup", "max-iterations", "function-tolerance",
+               "threads", "no-servo", "no-extrinsic", "no-dvl", "evaluate", "verbose", "quiet", "out"});
+  if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
+  const std::string out = a.Get("out");
+  if (out.empty()) throw UsageError("--out DIR is required");
+  AdjustmentOptions o;
+  o.model = ParseSurfaceModel(a.Get("model", "max-mixture"));
+  o.sigma0 = a.GetDouble("sigma0", o.sigma0);
+  o.sigma1 = a.GetDouble("sigma1", o.sigma1);
+  const std::string lookup = a.Get("lookup", "closest-face");
+  if (lookup != "closest-face" && lookup != "nearest-vertex") {
+    throw UsageError("--lookup expects closest-face or nearest-vertex");
+  }
+  o.lookup = lookup == "closest-face" ? SurfaceLookup::kClosestFace : SurfaceLookup::kNearestVertex;
+  o.max_iterations = static_cast<int>(a.GetInt("max-iterations", o.max_iterations));
+  o.function_tolerance = a.GetDouble("function-tolerance", o.function_tolerance);
+  o.num_threads = static_cast<int>(a.GetInt("threads", 0));
+  o.estimate_servo = !a.Has("no-servo");
+  o.estimate_extrinsic = !a.Has("no-extrinsic");
+  o.use_dvl = !a.Has("no-dvl");
+  o.verbose = a.Has("verbose");
+  o.Check();
+
+  const SurveyBundle bundle = ReadSurveyBundle(a.positionals()[0]);
+  const std::string mesh_path = a.Get("mesh", bundle.ModelHintPath());
+  if (mesh_path.empty()) throw UsageError("the bundle has no model_hint: give --mesh");
+  MeshLoadOptions lo;
+  lo.scale = a.GetDouble("mesh-scale", 1.0);
+  const TriangleMesh mesh = LoadMesh(mesh_path, lo);
+  ConsoleProgress progress(a.Has("quiet"));
+  Pose x_gM0;
+  if (bundle.manifest.model_pose_guess) {
+    x_gM0 = Pose::FromVector(*bundle.manifest.model_pose_guess);
+  } else {
+    throw InputError({bundle.directory + "/survey.json", 0, 0, "model_pose_guess"},
+                     "no model_pose_guess: run 'hullinspect-cli run' (aligns the DVL returns first)");
+  }
+  const AdjustmentResult r = RunAdjustment(bundle, mesh, x_gM0, o, progress);
+  progress.Finish();
+  WriteAdjustmentResult(r, out);
+  std::printf("%s: %zu iterations, cost %.6g -> %.6g, %.2f s (solver %.2f s), lambda=1 for %.1f %% of %zu landmarks\n",
+              SurfaceModelName(o.model),
+              r.iterations.empty() ? 0 : static_cast<std::size_t>(r.iterations.back().iteration), r.initial_cost,
+              r.final_cost, r.seconds, r.solver_seconds, 100 * r.FractionOnSurface(), r.landmarks.size());
+  std::printf("termination: %s\nwrote %s\n", r.termination.c_str(), out.c_str());
+  if (a.Has("evaluate") && bundle.truth) std::printf("%s", EvaluateAdjustment(bundle, mesh, r).ToString().c_str());
+  return kExitOk;
+}
+
+}  // namespace hull::cli

@@ -1,0 +1,75 @@
+// Options of the model-assisted bundle adjustment (one struct for the GUI
+// panel, the CLI flags and the project file; refused by Check() when invalid).
+#pragma once
+
+#include <cmath>
+#include <string>
+
+#include "geometry/mesh_index.h"
+
+namespace hull {
+
+// The surface constraint on the landmarks (Ozog et al., Section 4):
+enum class SurfaceModel {
+  kNaive,         // no surface factors (every lambda = 0)
+  kAllOnSurface,  // every lambda = 1 (Geva et al.): every feature pulled onto the mesh with sigma1
+  kMaxMixture,    // the method: a binary Gaussian max-mixture, the label chosen where evaluated
+};
+const char* SurfaceModelName(SurfaceModel m);  // "naive", "all-on-surface", "max-mixture"
+// Parses the names above; throws OptionError otherwise.
+SurfaceModel ParseSurfaceModel(const std::string& name);
+
+struct AdjustmentOptions {
+  SurfaceModel model = SurfaceModel::kMaxMixture;
+  // Surface-constraint sigmas (m): off the model (lambda = 0) and on it (lambda = 1).
+  double sigma0 = 1.0;
+  double sigma1 = 0.02;
+  // How h(x_gM, l) finds its face: the exact closest point (default) or the
+  // paper's nearest vertex and any adjacent face.
+  SurfaceLookup lookup = SurfaceLookup::kClosestFace;
+  // Huber threshold on whitened reprojection and DVL residuals (in sigmas).
+  double huber_sigmas = 2.0;
+  // Noise overrides (<= 0: the survey manifest's value).
+  double pixel_sigma = 0, dvl_range_sigma = 0, depth_sigma = 0, roll_pitch_sigma = 0, servo_sigma = 0;
+  double model_pose_sigma = 0;  // prior on x_gM: Sigma = sigma^2 I6
+  // Gauge: x, y and yaw of the first pose held at their initial values.
+  double gauge_sigma_xy = 1e-3, gauge_sigma_yaw = 1e-4;
+  // What is estimated besides poses and landmarks.
+  bool estimate_servo = true;
+  bool estimate_extrinsic = true;
+  bool estimate_model_pose = true;
+  bool use_dvl = true;
+  // Landmarks seen in fewer keyframes are left out (a single stereo view can
+  // still be triangulated, but is weak).
+  int min_observations = 2;
+  // Outlier rejection (wrong matches): after the solve, observations whose
+  // reprojection error exceeds this many pixel sigmas (norm of the 2-D
+  // error in either camera) are removed, landmarks left with fewer than
+  // min_observations views are dropped, and the problem is solved again;
+  // up to rejection_rounds times. 0 rounds: keep every observation.
+  double outlier_sigmas = 4.0;
+  int rejection_rounds = 2;
+  // Solver.
+  int max_iterations = 100;
+  double function_tolerance = 1e-6;
+  double gradient_tolerance = 1e-10;
+  double parameter_tolerance = 1e-8;
+  int num_threads = 0;  // 0: all cores
+  bool verbose = false;
+
+  // Throws OptionError naming the field: sigma0 > sigma1 > 0, positive
+  // overrides or 0, max_iterations >= 1, ...
+  void Check() const;
+  // The |h| at which the two mixture components are equally likely:
+  // sqrt(2 ln(sigma0 / sigma1) / (1 / sigma1^2 - 1 / sigma0^2)).
+  double DecisionBoundary() const;
+};
+
+// Label lambda of a signed distance under the max-mixture (1: on the model).
+inline int MaxMixtureLabel(double h, double sigma0, double sigma1) {
+  const double c1 = 0.5 * (h / sigma1) * (h / sigma1) + std::log(sigma1);
+  const double c0 = 0.5 * (h / sigma0) * (h / sigma0) + std::log(sigma0);
+  return c1 <= c0 ? 1 : 0;
+}
+
+}  // namespace hull

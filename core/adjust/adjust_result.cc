@@ -1,0 +1,202 @@
+#include "adjust/adjust_result.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include "base/csv.h"
+#include "base/file_io.h"
+#include "base/json.h"
+
+namespace hull {
+namespace fs = std::filesystem;
+namespace {
+
+Json Vec(const Vector6d& v) {
+  Json a = Json::Array();
+  for (int i = 0; i < 6; ++i) a.Push(Json(v[i]));
+  return a;
+}
+
+Vector6d Vec6(const JsonReader& r, const char* key) {
+  const auto v = r.Numbers(key, 6);
+  return Eigen::Map<const Vector6d>(v.data());
+}
+
+std::string Path(const std::string& dir, const char* f) { return (fs::path(dir) / f).string(); }
+
+}  // namespace
+
+double AdjustmentResult::FractionOnSurface() const {
+  if (landmarks.empty()) return 0;
+  int on = 0;
+  for (const auto& l : landmarks) on += l.label;
+  return static_cast<double>(on) / static_cast<double>(landmarks.size());
+}
+
+void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
+  fs::create_directories(dir);
+  Json root = Json::Object();
+  root.Set("format", "hull-adjustment");
+  root.Set("version", AdjustmentResult::kFormatVersion);
+  root.Set("model", SurfaceModelName(r.options.model));
+  Json opt = Json::Object();
+  opt.Set("sigma0", r.options.sigma0);
+  opt.Set("sigma1", r.options.sigma1);
+  opt.Set("lookup", r.options.lookup == SurfaceLookup::kClosestFace ? "closest-face" : "nearest-vertex");
+  opt.Set("huber_sigmas", r.options.huber_sigmas);
+  opt.Set("estimate_servo", r.options.estimate_servo);
+  opt.Set("estimate_extrinsic", r.options.estimate_extrinsic);
+  opt.Set("estimate_model_pose", r.options.estimate_model_pose);
+  opt.Set("use_dvl", r.options.use_dvl);
+  opt.Set("max_iterations", r.options.max_iterations);
+  root.Set("options", opt);
+  Json sum = Json::Object();
+  sum.Set("termination", r.termination);
+  sum.Set("converged", r.converged);
+  sum.Set("seconds", r.seconds);
+  sum.Set("solver_seconds", r.solver_seconds);
+  sum.Set("initial_cost", r.initial_cost);
+  sum.Set("final_cost", r.final_cost);
+  sum.Set("iterations", static_cast<int>(r.iterations.empty() ? 0 : r.iterations.back().iteration));
+  sum.Set("residual_blocks", r.num_residual_blocks);
+  sum.Set("landmarks", static_cast<std::int64_t>(r.landmarks.size()));
+  sum.Set("landmarks_skipped", r.num_landmarks_skipped);
+  sum.Set("observations_rejected", r.observations_rejected);
+  sum.Set("fraction_on_surface", r.FractionOnSurface());
+  sum.Set("decision_boundary", r.options.DecisionBoundary());
+  root.Set("summary", sum);
+  root.Set("x_gM", Vec(r.x_gM));
+  root.Set("x_gM_initial", Vec(r.x_gM_initial));
+  root.Set("x_s_cT", Vec(r.x_s_cT));
+  root.Set("x_s_cT_initial", Vec(r.x_s_cT_initial));
+  Json its = Json::Array();
+  for (const auto& it : r.iterations) {
+    Json j = Json::Object();
+    j.Set("iteration", it.iteration);
+    j.Set("cost", it.cost);
+    j.Set("seconds", it.seconds);
+    j.Set("fraction_on_surface", it.fraction_on_surface);
+    its.Push(j);
+  }
+  root.Set("iterations", its);
+  WriteFileAtomic(Path(dir, "adjustment.json"), root.Dump());
+
+  CsvWriter poses({"keyframe", "x", "y", "z", "roll", "pitch", "yaw", "servo"});
+  for (std::size_t i = 0; i < r.poses.size(); ++i) {
+    poses.Add(r.keyframes[i]);
+    for (int k = 0; k < 6; ++k) poses.Add(r.poses[i][k]);
+    poses.Add(r.servo[i]);
+    poses.EndRow();
+  }
+  WriteFileAtomic(Path(dir, "poses.csv"), poses.text());
+  CsvWriter lms({"landmark", "x", "y", "z", "label", "deviation", "observations"});
+  for (const auto& l : r.landmarks) {
+    lms.Add(l.id).Add(l.p.x()).Add(l.p.y()).Add(l.p.z()).Add(l.label).Add(l.deviation).Add(l.observations);
+    lms.EndRow();
+  }
+  WriteFileAtomic(Path(dir, "landmarks.csv"), lms.text());
+  CsvWriter dvl({"keyframe", "beam", "measured", "initial", "final"});
+  auto opt_d = [](double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; };
+  for (const auto& d : r.dvl) {
+    dvl.Add(d.keyframe).Add(d.beam).Add(d.measured).AddOptional(opt_d(d.initial)).AddOptional(opt_d(d.final));
+    dvl.EndRow();
+  }
+  WriteFileAtomic(Path(dir, "dvl_residuals.csv"), dvl.text());
+}
+
+AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
+  AdjustmentResult r;
+  const std::string jpath = Path(dir, "adjustment.json");
+  const Json doc = Json::Parse(ReadFileToString(jpath), jpath);
+  JsonReader root(doc, jpath);
+  if (root.String("format") != "hull-adjustment") {
+    root.Fail(root.Required("format"), "format", "expected \"hull-adjustment\"");
+  }
+  if (root.Integer("version") != AdjustmentResult::kFormatVersion) {
+    root.Fail(root.Required("version"), "version", "unsupported version; this reader knows 1");
+  }
+  try {
+    r.options.model = ParseSurfaceModel(root.String("model"));
+  } catch (const OptionError& e) {
+    root.Fail(root.Required("model"), "model", e.what());
+  }
+  const JsonReader opt = root.Object("options");
+  r.options.sigma0 = opt.Number("sigma0");
+  r.options.sigma1 = opt.Number("sigma1");
+  r.options.lookup =
+      opt.String("lookup") == "nearest-vertex" ? SurfaceLookup::kNearestVertex : SurfaceLookup::kClosestFace;
+  r.options.huber_sigmas = opt.Number("huber_sigmas");
+  r.options.max_iterations = static_cast<int>(opt.Integer("max_iterations"));
+  const JsonReader sum = root.Object("summary");
+  r.termination = sum.String("termination");
+  r.converged = sum.Required("converged").as_bool();
+  r.seconds = sum.Number("seconds");
+  r.solver_seconds = sum.NumberOr("solver_seconds", 0);
+  r.initial_cost = sum.Number("initial_cost");
+  r.final_cost = sum.Number("final_cost");
+  r.num_residual_blocks = static_cast<int>(sum.Integer("residual_blocks"));
+  r.num_landmarks_skipped = static_cast<int>(sum.Integer("landmarks_skipped"));
+  r.observations_rejected = static_cast<int>(sum.NumberOr("observations_rejected", 0));
+  r.x_gM = Vec6(root, "x_gM");
+  r.x_gM_initial = Vec6(root, "x_gM_initial");
+  r.x_s_cT = Vec6(root, "x_s_cT");
+  r.x_s_cT_initial = Vec6(root, "x_s_cT_initial");
+  const Json& its = root.Required("iterations");
+  for (std::size_t i = 0; i < its.items().size(); ++i) {
+    JsonReader it(its.items()[i], jpath, "iterations[" + std::to_string(i) + "]");
+    r.iterations.push_back({static_cast<int>(it.Integer("iteration")), it.Number("cost"), it.Number("seconds"),
+                            it.Number("fraction_on_surface")});
+  }
+  {
+    const std::string p = Path(dir, "poses.csv");
+    const std::string text = ReadFileToString(p);
+    CsvReader c(text, p);
+    const int k = c.Require("keyframe");
+    const int cols[6] = {c.Require("x"),    c.Require("y"),     c.Require("z"),
+                         c.Require("roll"), c.Require("pitch"), c.Require("yaw")};
+    const int s = c.Require("servo");
+    while (c.Next()) {
+      r.keyframes.push_back(c.Int(k));
+      Vector6d x;
+      for (int i = 0; i < 6; ++i) x[i] = c.Double(cols[i]);
+      r.poses.push_back(x);
+      r.servo.push_back(c.Double(s));
+    }
+  }
+  {
+    const std::string p = Path(dir, "landmarks.csv");
+    const std::string text = ReadFileToString(p);
+    CsvReader c(text, p);
+    const int id = c.Require("landmark"), x = c.Require("x"), y = c.Require("y"), z = c.Require("z");
+    const int label = c.Require("label"), dev = c.Require("deviation"), obs = c.Require("observations");
+    while (c.Next()) {
+      LandmarkEstimate l;
+      l.id = c.Int(id);
+      l.p = {c.Double(x), c.Double(y), c.Double(z)};
+      l.label = static_cast<int>(c.Int(label));
+      if (l.label != 0 && l.label != 1) c.Fail(label, "expected 0 or 1");
+      l.deviation = c.Double(dev);
+      l.observations = static_cast<int>(c.Int(obs));
+      r.landmarks.push_back(l);
+    }
+  }
+  {
+    const std::string p = Path(dir, "dvl_residuals.csv");
+    const std::string text = ReadFileToString(p);
+    CsvReader c(text, p);
+    const int k = c.Require("keyframe"), b = c.Require("beam"), m = c.Require("measured");
+    const int i0 = c.Require("initial"), i1 = c.Require("final");
+    while (c.Next()) {
+      DvlResidual d;
+      d.keyframe = c.Int(k);
+      d.beam = static_cast<int>(c.Int(b));
+      d.measured = c.Double(m);
+      d.initial = c.OptionalDouble(i0).value_or(std::nan(""));
+      d.final = c.OptionalDouble(i1).value_or(std::nan(""));
+      r.dvl.push_back(d);
+    }
+  }
+  return r;
+}
+
+}  // namespace hull

@@ -1,0 +1,72 @@
+// What the model-assisted bundle adjustment produces, and its on-disk format
+// (docs/results-format.md, "adjustment results, version 1"): a folder with
+//   adjustment.json   format "hull-adjustment", version, model, options,
+//                     summary, x_gM, x_s_cT (initial and final), iteration log
+//   poses.csv         keyframe,x,y,z,roll,pitch,yaw,servo          (x_gv in g)
+//   landmarks.csv     landmark,x,y,z,label,deviation,observations  (in g)
+//   dvl_residuals.csv keyframe,beam,measured,initial,final         (m; empty = no hit)
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "adjust/adjust_options.h"
+#include "geometry/pose.h"
+
+namespace hull {
+
+struct IterationRecord {
+  int iteration = 0;
+  double cost = 0;                 // 0.5 sum of squared (robustified) residuals
+  double seconds = 0;              // since the solver started
+  double fraction_on_surface = 0;  // share of landmarks with lambda = 1 (Fig. 16)
+};
+
+struct LandmarkEstimate {
+  std::int64_t id = 0;
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();  // in g
+  int label = 1;                                // lambda: 1 on the hull, 0 foreign structure (max-mixture decision)
+  double deviation = 0;                         // h(x_gM, l): orthogonal signed distance to the mesh (m)
+  int observations = 0;                         // keyframes that saw it
+};
+
+struct DvlResidual {
+  std::int64_t keyframe = 0;
+  int beam = 1;         // 1..4
+  double measured = 0;  // m
+  double initial = 0;   // measured - predicted at the initial alignment (NaN: the beam misses the mesh)
+  double final = 0;     // measured - predicted after adjustment
+};
+
+struct AdjustmentResult {
+  static constexpr int kFormatVersion = 1;
+
+  AdjustmentOptions options;
+  std::vector<std::int64_t> keyframes;
+  std::vector<Vector6d> poses;  // x_gv per keyframe
+  std::vector<double> servo;
+  Vector6d x_gM = Vector6d::Zero(), x_gM_initial = Vector6d::Zero();
+  Vector6d x_s_cT = Vector6d::Zero(), x_s_cT_initial = Vector6d::Zero();
+  std::vector<LandmarkEstimate> landmarks;
+  std::vector<DvlResidual> dvl;
+  std::vector<IterationRecord> iterations;
+
+  std::string termination;  // Ceres' termination type and message
+  bool converged = false;
+  double seconds = 0;  // wall time of the whole adjustment
+  double solver_seconds = 0;
+  double initial_cost = 0, final_cost = 0;
+  int num_residual_blocks = 0;
+  int num_landmarks_skipped = 0;  // too few observations, not triangulable, or lost to outlier rejection
+  int observations_rejected = 0;  // reprojection outliers removed (wrong matches)
+
+  // The fraction of landmarks with lambda = 1 at the end.
+  double FractionOnSurface() const;
+};
+
+void WriteAdjustmentResult(const AdjustmentResult& result, const std::string& dir);
+// Throws InputError naming file, line and field.
+AdjustmentResult ReadAdjustmentResult(const std::string& dir);
+
+}  // namespace hull

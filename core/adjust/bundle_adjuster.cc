@@ -1,0 +1,497 @@
+#include "adjust/bundle_adjuster.h"
+
+#include <ceres/ceres.h>
+#include <ceres/manifold.h>
+#include <ceres/product_manifold.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <set>
+#include <thread>
+#include <unordered_map>
+
+#include "adjust/factors/dvl_raycast_factor.h"
+#include "adjust/factors/odometry_factor.h"
+#include "adjust/factors/pose_prior_factor.h"
+#include "adjust/factors/reprojection_factor.h"
+#include "adjust/factors/surface_factor.h"
+#include "adjust/factors/zpr_factor.h"
+#include "adjust/triangulation.h"
+#include "base/error.h"
+#include "geometry/mesh_index.h"
+
+namespace hull {
+namespace {
+using adjust::BlockToPose;
+using adjust::kPoseSize;
+using adjust::PoseToBlock;
+using Clock = std::chrono::steady_clock;
+
+struct State {
+  std::vector<std::array<double, kPoseSize>> pose;
+  std::vector<double> servo;
+  std::array<double, kPoseSize> extrinsic{};
+  // The model pose is optimised as x_gC, a frame with M's orientation at the
+  // centroid of the surveyed region: x_gM = x_gC (+) x_CM. Parameterised at
+  // M's own origin (often the stern, ~100 m away), a rotation of the prior's
+  // size would swing the surveyed region across the hull, and a flat hull
+  // patch would leave that swing unobserved; about the region, yaw and
+  // translation mean what they say. The prior (eq. 8) applies to x_gC.
+  std::array<double, kPoseSize> model{};
+  Pose model_offset;  // x_CM (a pure translation)
+  Pose ModelPose() const { return BlockToPose(model.data()) * model_offset; }
+  std::vector<std::array<double, 3>> landmark;
+  std::vector<std::int64_t> landmark_id;
+  std::vector<int> landmark_views;
+};
+
+// Fraction of landmarks whose max-mixture label is 1 at the current state.
+double FractionOnSurface(const State& s, const MeshIndex& index, const AdjustmentOptions& o, std::vector<int>* hints) {
+  if (s.landmark.empty()) return 0;
+  const Pose x_gM = s.ModelPose();
+  int on = 0;
+  for (std::size_t i = 0; i < s.landmark.size(); ++i) {
+    const Eigen::Vector3d l(s.landmark[i][0], s.landmark[i][1], s.landmark[i][2]);
+    const SurfaceDistance sd = index.OrthogonalSignedDistance(x_gM, l, o.lookup, (*hints)[i]);
+    (*hints)[i] = sd.face;
+    on += MaxMixtureLabel(sd.signed_distance, o.sigma0, o.sigma1);
+  }
+  return static_cast<double>(on) / static_cast<double>(s.landmark.size());
+}
+
+class Observer : public ceres::IterationCallback {
+ public:
+  Observer(const State& s, const MeshIndex& index, const AdjustmentOptions& o, Progress& progress,
+           std::vector<IterationRecord>& log)
+      : s_(s), index_(index), o_(o), progress_(progress), log_(log), hints_(s.landmark.size(), -1) {}
+
+  // Rounds after outlier rejection continue the iteration count.
+  void set_iteration_offset(int offset) { offset_ = offset; }
+
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
+    if (offset_ > 0 && it.iteration == 0) return ceres::SOLVER_CONTINUE;  // same state as the last record
+    IterationRecord r;
+    r.iteration = offset_ + it.iteration;
+    r.cost = it.cost;
+    r.seconds = it.cumulative_time_in_seconds;
+    r.fraction_on_surface = FractionOnSurface(s_, index_, o_, &hints_);
+    log_.push_back(r);
+    char msg[160];
+    std::snprintf(msg, sizeof(msg), "%s adjustment: iteration %d, cost %.6g, lambda=1 for %.1f %%",
+                  SurfaceModelName(o_.model), r.iteration, it.cost, 100.0 * r.fraction_on_surface);
+    progress_.Update(0.1 + 0.85 * std::min(1.0, static_cast<double>(r.iteration) / o_.max_iterations), msg);
+    return progress_.Cancelled() ? ceres::SOLVER_ABORT : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  const State& s_;
+  const MeshIndex& index_;
+  const AdjustmentOptions& o_;
+  Progress& progress_;
+  std::vector<IterationRecord>& log_;
+  std::vector<int> hints_;
+  int offset_ = 0;
+};
+
+double Or(double override_value, double survey_value) { return override_value > 0 ? override_value : survey_value; }
+
+}  // namespace
+
+AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, const Pose& x_gM_initial,
+                               const AdjustmentOptions& o, Progress& progress, const AdjustmentResult* warm) {
+  o.Check();
+  const auto t0 = Clock::now();
+  if (b.nav.empty()) throw InputError({b.directory, 0, 0, "nav.csv"}, "the survey has no keyframes to adjust");
+  if (mesh.empty()) throw InputError({"mesh", 0, 0, ""}, "the prior mesh has no faces");
+  progress.Update(0.0, "indexing the prior mesh");
+  const MeshIndex index(mesh);
+  const SurveyManifest& man = b.manifest;
+  const NoiseModel& nz = man.noise;
+  const double pixel_sigma = Or(o.pixel_sigma, nz.pixel_sigma);
+  const double dvl_sigma = Or(o.dvl_range_sigma, nz.dvl_range_sigma);
+  const double depth_sigma = Or(o.depth_sigma, nz.depth_sigma);
+  const double rp_sigma = Or(o.roll_pitch_sigma, nz.roll_pitch_sigma);
+  const double servo_sigma = Or(o.servo_sigma, nz.servo_sigma);
+  const double model_sigma = Or(o.model_pose_sigma, nz.model_pose_sigma);
+  const auto kf_index = b.KeyframeIndex();
+  const int K = static_cast<int>(b.nav.size());
+
+  // ---- initial state ------------------------------------------------------------
+  State s;
+  s.pose.resize(static_cast<std::size_t>(K));
+  s.servo.resize(static_cast<std::size_t>(K));
+  std::unordered_map<std::int64_t, int> warm_kf;
+  if (warm) {
+    for (std::size_t i = 0; i < warm->keyframes.size(); ++i) warm_kf[warm->keyframes[i]] = static_cast<int>(i);
+  }
+  for (int i = 0; i < K; ++i) {
+    const NavRecord& n = b.nav[static_cast<std::size_t>(i)];
+    auto w = warm_kf.find(n.keyframe);
+    if (w != warm_kf.end()) {
+      PoseToBlock(Pose::FromVector(warm->poses[static_cast<std::size_t>(w->second)]), s.pose[i].data());
+      s.servo[static_cast<std::size_t>(i)] = warm->servo[static_cast<std::size_t>(w->second)];
+    } else {
+      PoseToBlock(Pose::FromVector(n.x_gv), s.pose[i].data());
+      s.servo[static_cast<std::size_t>(i)] = n.servo;
+    }
+  }
+  const Pose extrinsic_nominal = Pose::FromVector(man.camera.servo_to_top);
+  PoseToBlock(warm ? Pose::FromVector(warm->x_s_cT) : extrinsic_nominal, s.extrinsic.data());
+  const Pose x_gM_start = warm ? Pose::FromVector(warm->x_gM) : x_gM_initial;
+
+  adjust::CameraModel cam;
+  cam.mount = Pose::FromVector(man.servo_mount);
+  cam.top_to_bottom = Pose::FromVector(man.camera.top_to_bottom);
+  cam.top = man.camera.top;
+  cam.bottom = man.camera.bottom;
+  adjust::DvlModel dvl_model;
+  dvl_model.mesh = &index;
+  dvl_model.mount = cam.mount;
+  dvl_model.servo_to_dvl = Pose::FromVector(man.servo_to_dvl);
+
+  // Observations per landmark.
+  std::unordered_map<std::int64_t, std::vector<int>> obs_of;
+  for (int i = 0; i < static_cast<int>(b.features.size()); ++i)
+    obs_of[b.features[static_cast<std::size_t>(i)].landmark].push_back(i);
+  std::unordered_map<std::int64_t, Eigen::Vector3d> given;
+  if (b.landmarks) {
+    for (const auto& l : *b.landmarks) given[l.landmark] = l.p;
+  }
+  std::unordered_map<std::int64_t, Eigen::Vector3d> warm_lm;
+  if (warm) {
+    for (const auto& l : warm->landmarks) warm_lm[l.id] = l.p;
+  }
+  progress.Update(0.03, "initialising landmarks");
+  std::vector<std::int64_t> ids;
+  ids.reserve(obs_of.size());
+  for (const auto& [id, list] : obs_of) ids.push_back(id);
+  std::sort(ids.begin(), ids.end());
+  const Pose x_s_cT0 = BlockToPose(s.extrinsic.data());
+  const Pose x_gM0 = x_gM_start;
+  std::vector<std::vector<int>> lm_obs;  // observations used, per kept landmark
+  int skipped = 0;
+  for (std::int64_t id : ids) {
+    const std::vector<int>& list = obs_of[id];
+    std::set<std::int64_t> views;
+    for (int fi : list) views.insert(b.features[static_cast<std::size_t>(fi)].keyframe);
+    if (static_cast<int>(views.size()) < o.min_observations) {
+      ++skipped;
+      continue;
+    }
+    Eigen::Vector3d p;
+    std::vector<int> used = list;
+    if (auto w = warm_lm.find(id); w != warm_lm.end()) {
+      p = w->second;
+    } else if (auto g = given.find(id); g != given.end()) {
+      p = g->second;
+    } else {
+      std::vector<ViewRay> rays;
+      std::vector<int> ray_obs;
+      for (int fi : list) {
+        const FeatureObservation& f = b.features[static_cast<std::size_t>(fi)];
+        const int k = kf_index.at(f.keyframe);
+        const Pose g_cT = BlockToPose(s.pose[static_cast<std::size_t>(k)].data()) *
+                          man.VehicleToServo(s.servo[static_cast<std::size_t>(k)]) * x_s_cT0;
+        auto add = [&](const Pose& g_c, const PinholeIntrinsics& K_, const Eigen::Vector2d& uv) {
+          ViewRay r;
+          r.origin = g_c.translation();
+          r.dir = g_c.Rotate(K_.Unproject(uv)).normalized();
+          r.g_c = g_c;
+          r.pixel = uv;
+          r.fx = K_.fx;
+          r.fy = K_.fy;
+          r.cx = K_.cx;
+          r.cy = K_.cy;
+          rays.push_back(r);
+          ray_obs.push_back(fi);
+        };
+        add(g_cT, cam.top, f.top);
+        if (f.has_bottom && man.camera.stereo()) add(g_cT * cam.top_to_bottom, cam.bottom, f.bottom);
+      }
+      const auto t = TriangulateLandmark(rays, TriangulationOptions{}, &index, x_gM0);
+      if (!t) {
+        ++skipped;
+        continue;
+      }
+      p = t->point;
+    }
+    s.landmark.push_back({p.x(), p.y(), p.z()});
+    s.landmark_id.push_back(id);
+    s.landmark_views.push_back(static_cast<int>(views.size()));
+    lm_obs.push_back(used);
+  }
+  if (s.landmark.empty() && !b.features.empty()) {
+    throw InputError({b.directory, 0, 0, "features.csv"}, "no landmark could be initialised");
+  }
+  // The pivot of the model pose: the centroid of the landmarks (or of the vehicle positions).
+  {
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    if (!s.landmark.empty()) {
+      for (const auto& l : s.landmark) c += Eigen::Vector3d(l[0], l[1], l[2]);
+      c /= static_cast<double>(s.landmark.size());
+    } else {
+      for (const auto& p : s.pose) c += Eigen::Vector3d(p[4], p[5], p[6]);
+      c /= static_cast<double>(s.pose.size());
+    }
+    const Pose x_gC(x_gM_start.quaternion(), c);
+    s.model_offset = x_gC.Inverse() * x_gM_start;
+    PoseToBlock(x_gC, s.model.data());
+    dvl_model.model_offset = s.model_offset;
+  }
+  progress.ThrowIfCancelled();
+
+  // ---- the problem ------------------------------------------------------------------
+  progress.Update(0.06, "building the factor graph");
+  ceres::Problem::Options po;
+  po.enable_fast_removal = true;
+  po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(po);
+  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> se3;
+  ceres::HuberLoss huber(o.huber_sigmas);
+  for (int i = 0; i < K; ++i) {
+    problem.AddParameterBlock(s.pose[static_cast<std::size_t>(i)].data(), kPoseSize, &se3);
+    problem.AddParameterBlock(&s.servo[static_cast<std::size_t>(i)], 1);
+    if (!o.estimate_servo) problem.SetParameterBlockConstant(&s.servo[static_cast<std::size_t>(i)]);
+  }
+  problem.AddParameterBlock(s.extrinsic.data(), kPoseSize, &se3);
+  problem.AddParameterBlock(s.model.data(), kPoseSize, &se3);
+  if (!o.estimate_extrinsic) problem.SetParameterBlockConstant(s.extrinsic.data());
+  if (!o.estimate_model_pose) problem.SetParameterBlockConstant(s.model.data());
+  for (auto& l : s.landmark) problem.AddParameterBlock(l.data(), 3);
+
+  // Priors: gauge, zpr, servo, extrinsic, model pose.
+  problem.AddResidualBlock(adjust::GaugePriorFactor::Create(b.nav[0].x_gv, o.gauge_sigma_xy, o.gauge_sigma_yaw),
+                           nullptr, s.pose[0].data());
+  for (int i = 0; i < K; ++i) {
+    const NavRecord& n = b.nav[static_cast<std::size_t>(i)];
+    problem.AddResidualBlock(adjust::ZprFactor::Create(n.depth, n.pitch_meas, n.roll_meas, depth_sigma, rp_sigma),
+                             nullptr, s.pose[static_cast<std::size_t>(i)].data());
+    problem.AddResidualBlock(adjust::ServoPriorFactor::Create(n.servo, servo_sigma), nullptr,
+                             &s.servo[static_cast<std::size_t>(i)]);
+  }
+  problem.AddResidualBlock(adjust::PosePriorFactor::Create(extrinsic_nominal, nz.servo_to_top_sigma), nullptr,
+                           s.extrinsic.data());
+  const Pose x_gC_prior = x_gM_initial * s.model_offset.Inverse();
+  problem.AddResidualBlock(adjust::PosePriorFactor::Create(x_gC_prior, Vector6d::Constant(model_sigma)), nullptr,
+                           s.model.data());
+  // Odometry.
+  for (const OdometryRecord& od : b.odometry) {
+    const int i = kf_index.at(od.from), j = kf_index.at(od.to);
+    const double dt =
+        std::max(1e-3, std::abs(b.nav[static_cast<std::size_t>(j)].t - b.nav[static_cast<std::size_t>(i)].t));
+    Vector6d sigma;
+    sigma.head<3>().setConstant(nz.odometry_translation_rate * dt);
+    sigma.tail<3>().setConstant(nz.odometry_rotation_rate * dt);
+    problem.AddResidualBlock(adjust::OdometryFactor::Create(od.z, sigma), nullptr,
+                             s.pose[static_cast<std::size_t>(i)].data(), s.pose[static_cast<std::size_t>(j)].data());
+  }
+  // Reprojection.
+  struct ReprojectionBlock {
+    ceres::ResidualBlockId id;
+    std::size_t landmark;
+    std::int64_t keyframe;
+  };
+  std::vector<ReprojectionBlock> reprojection;
+  for (std::size_t li = 0; li < s.landmark.size(); ++li) {
+    for (int fi : lm_obs[li]) {
+      const FeatureObservation& f = b.features[static_cast<std::size_t>(fi)];
+      const int k = kf_index.at(f.keyframe);
+      ceres::CostFunction* cf = (man.camera.stereo() && f.has_bottom)
+                                    ? adjust::StereoReprojectionFactor::Create(&cam, f.top, f.bottom, pixel_sigma)
+                                    : adjust::MonoReprojectionFactor::Create(&cam, f.top, pixel_sigma);
+      const ceres::ResidualBlockId id =
+          problem.AddResidualBlock(cf, &huber, s.pose[static_cast<std::size_t>(k)].data(),
+                                   &s.servo[static_cast<std::size_t>(k)], s.extrinsic.data(), s.landmark[li].data());
+      reprojection.push_back({id, li, f.keyframe});
+    }
+  }
+  // DVL raycasts.
+  if (o.use_dvl) {
+    for (const DvlRecord& d : b.dvl) {
+      const int k = kf_index.at(d.keyframe);
+      for (int beam = 0; beam < 4; ++beam) {
+        const double r = d.range[static_cast<std::size_t>(beam)];
+        if (!DvlRecord::HasReturn(r)) continue;
+        problem.AddResidualBlock(adjust::DvlRaycastFactor::Create(&dvl_model, man.BeamDirection(beam), r, dvl_sigma),
+                                 &huber, s.pose[static_cast<std::size_t>(k)].data(),
+                                 &s.servo[static_cast<std::size_t>(k)], s.model.data());
+      }
+    }
+  }
+  // Surface constraints.
+  if (o.model != SurfaceModel::kNaive) {
+    for (auto& l : s.landmark) {
+      problem.AddResidualBlock(
+          adjust::SurfaceFactor::Create(&index, &s.model_offset, o.lookup, o.model, o.sigma0, o.sigma1), nullptr,
+          s.model.data(), l.data());
+    }
+  }
+
+  // ---- DVL residuals at the start (the initial alignment) ---------------------------
+  AdjustmentResult result;
+  result.options = o;
+  result.num_landmarks_skipped = skipped;
+  auto dvl_residuals = [&](bool initial) {
+    std::size_t n = 0;
+    for (const DvlRecord& d : b.dvl) {
+      const int k = kf_index.at(d.keyframe);
+      for (int beam = 0; beam < 4; ++beam) {
+        const double r = d.range[static_cast<std::size_t>(beam)];
+        if (!DvlRecord::HasReturn(r)) continue;
+        const double pred = adjust::DvlRaycastFactor::PredictRange(
+            dvl_model, s.pose[static_cast<std::size_t>(k)].data(), &s.servo[static_cast<std::size_t>(k)],
+            s.model.data(), man.BeamDirection(beam));
+        if (initial) {
+          result.dvl.push_back({d.keyframe, beam + 1, r, r - pred, std::nan("")});
+        } else {
+          result.dvl[n++].final = r - pred;
+        }
+      }
+    }
+  };
+  {
+    // The initial alignment: initial poses and servo angles against x_gM_initial.
+    const auto saved = s.model;
+    PoseToBlock(x_gM_initial * s.model_offset.Inverse(), s.model.data());
+    std::vector<std::array<double, kPoseSize>> saved_pose;
+    std::vector<double> saved_servo;
+    if (warm) {
+      saved_pose = s.pose;
+      saved_servo = s.servo;
+      for (int i = 0; i < K; ++i) {
+        PoseToBlock(Pose::FromVector(b.nav[static_cast<std::size_t>(i)].x_gv),
+                    s.pose[static_cast<std::size_t>(i)].data());
+        s.servo[static_cast<std::size_t>(i)] = b.nav[static_cast<std::size_t>(i)].servo;
+      }
+    }
+    dvl_residuals(true);
+    s.model = saved;
+    if (warm) {
+      s.pose = saved_pose;
+      s.servo = saved_servo;
+    }
+  }
+
+  // ---- solve ------------------------------------------------------------------------
+  ceres::Solver::Options so;
+  so.minimizer_type = ceres::TRUST_REGION;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  so.linear_solver_type = ceres::SPARSE_SCHUR;
+  so.max_num_iterations = o.max_iterations;
+  so.function_tolerance = o.function_tolerance;
+  so.gradient_tolerance = o.gradient_tolerance;
+  so.parameter_tolerance = o.parameter_tolerance;
+  so.num_threads =
+      o.num_threads > 0 ? o.num_threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  so.minimizer_progress_to_stdout = o.verbose;
+  so.logging_type = o.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
+  so.update_state_every_iteration = true;
+  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
+  for (auto& l : s.landmark) ordering->AddElementToGroup(l.data(), 0);
+  for (int i = 0; i < K; ++i) {
+    ordering->AddElementToGroup(s.pose[static_cast<std::size_t>(i)].data(), 1);
+    ordering->AddElementToGroup(&s.servo[static_cast<std::size_t>(i)], 1);
+  }
+  ordering->AddElementToGroup(s.extrinsic.data(), 1);
+  ordering->AddElementToGroup(s.model.data(), 1);
+  so.linear_solver_ordering = ordering;
+  Observer observer(s, index, o, progress, result.iterations);
+  so.callbacks.push_back(&observer);
+  progress.Update(0.1, std::string(SurfaceModelName(o.model)) + " adjustment: solving");
+  ceres::Solver::Summary summary;
+  std::vector<char> dropped(s.landmark.size(), 0);
+  double initial_cost = -1, solver_seconds = 0;
+  for (int round = 0;; ++round) {
+    observer.set_iteration_offset(result.iterations.empty() ? 0 : result.iterations.back().iteration);
+    ceres::Solve(so, &problem, &summary);
+    if (o.verbose) std::printf("%s\n", summary.FullReport().c_str());
+    if (summary.termination_type == ceres::USER_FAILURE || progress.Cancelled()) throw Cancelled();
+    if (summary.termination_type == ceres::FAILURE) {
+      throw std::runtime_error("bundle adjustment failed: " + summary.message);
+    }
+    if (initial_cost < 0) initial_cost = summary.initial_cost;
+    solver_seconds += summary.total_time_in_seconds;
+    if (round >= o.rejection_rounds) break;
+    // Remove observations beyond outlier_sigmas (the 2-D error in either camera).
+    const double limit2 = o.outlier_sigmas * o.outlier_sigmas;
+    std::size_t removed = 0;
+    std::vector<ReprojectionBlock> kept;
+    for (const ReprojectionBlock& rb : reprojection) {
+      double r[4];
+      problem.EvaluateResidualBlock(rb.id, false, nullptr, r, nullptr);
+      const int n = problem.GetCostFunctionForResidualBlock(rb.id)->num_residuals();
+      bool bad = r[0] * r[0] + r[1] * r[1] > limit2;
+      if (n == 4) bad = bad || r[2] * r[2] + r[3] * r[3] > limit2;
+      if (bad) {
+        problem.RemoveResidualBlock(rb.id);
+        ++removed;
+      } else {
+        kept.push_back(rb);
+      }
+    }
+    // Drop landmarks left with too few views.
+    std::vector<std::set<std::int64_t>> views(s.landmark.size());
+    for (const ReprojectionBlock& rb : kept) views[rb.landmark].insert(rb.keyframe);
+    std::size_t lost = 0;
+    for (std::size_t li = 0; li < s.landmark.size(); ++li) {
+      if (dropped[li] || static_cast<int>(views[li].size()) >= o.min_observations) continue;
+      problem.RemoveParameterBlock(s.landmark[li].data());
+      ordering->Remove(s.landmark[li].data());
+      dropped[li] = 1;
+      ++lost;
+    }
+    if (lost) {
+      std::vector<ReprojectionBlock> still;
+      for (const ReprojectionBlock& rb : kept) {
+        if (!dropped[rb.landmark]) still.push_back(rb);
+      }
+      kept.swap(still);
+    }
+    reprojection.swap(kept);
+    result.observations_rejected += static_cast<int>(removed);
+    result.num_landmarks_skipped += static_cast<int>(lost);
+    for (std::size_t li = 0; li < s.landmark.size(); ++li) s.landmark_views[li] = static_cast<int>(views[li].size());
+    if (removed == 0) break;
+    progress.Update(0.5, "removed " + std::to_string(removed) + " outlying observations and " + std::to_string(lost) +
+                             " landmarks; solving again");
+  }
+
+  // ---- results ------------------------------------------------------------------------
+  result.termination = std::string(ceres::TerminationTypeToString(summary.termination_type)) + ": " + summary.message;
+  result.converged = summary.termination_type == ceres::CONVERGENCE;
+  result.solver_seconds = solver_seconds;
+  result.initial_cost = initial_cost;
+  result.final_cost = summary.final_cost;
+  result.num_residual_blocks = summary.num_residual_blocks;
+  for (int i = 0; i < K; ++i) {
+    result.keyframes.push_back(b.nav[static_cast<std::size_t>(i)].keyframe);
+    result.poses.push_back(BlockToPose(s.pose[static_cast<std::size_t>(i)].data()).ToVector());
+    result.servo.push_back(s.servo[static_cast<std::size_t>(i)]);
+  }
+  result.x_gM = s.ModelPose().ToVector();
+  result.x_gM_initial = x_gM_initial.ToVector();
+  result.x_s_cT = BlockToPose(s.extrinsic.data()).ToVector();
+  result.x_s_cT_initial = extrinsic_nominal.ToVector();
+  const Pose x_gM = s.ModelPose();
+  for (std::size_t i = 0; i < s.landmark.size(); ++i) {
+    if (dropped[i]) continue;
+    LandmarkEstimate e;
+    e.id = s.landmark_id[i];
+    e.p = {s.landmark[i][0], s.landmark[i][1], s.landmark[i][2]};
+    e.deviation = index.OrthogonalSignedDistance(x_gM, e.p, o.lookup).signed_distance;
+    e.label = MaxMixtureLabel(e.deviation, o.sigma0, o.sigma1);
+    e.observations = s.landmark_views[i];
+    result.landmarks.push_back(e);
+  }
+  dvl_residuals(false);
+  result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  progress.Update(1.0, std::string(SurfaceModelName(o.model)) +
+                           " adjustment done: " + std::to_string(summary.iterations.size() - 1) + " iterations");
+  return result;
+}
+
+}  // namespace hull

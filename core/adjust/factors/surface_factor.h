@@ -1,0 +1,74 @@
+// The surface constraint on one landmark (eqs. 4, 5 and 7 of Ozog et al.):
+//   h(x_gM, l) = (H l - p)^T n / |n|,   H = (-)x_gM (maps g into M),
+// with p the closest point of the prior mesh and n the outward normal of its
+// face, looked up afresh at every evaluation (data association per
+// iteration) and held constant for the derivative. Measurement z = 0.
+//
+//   all-on-surface:  r = h / sigma1                       (every lambda = 1)
+//   max-mixture:     p(z|X) = eta max_lambda N(h; 0, sigma_lambda^2), equal weights.
+//     The label is the component with the lower negative log-likelihood
+//       0.5 (h / sigma)^2 + ln sigma,
+//     chosen where the likelihood is evaluated (E- and M-steps merged). The
+//     normalisation stays in the cost as a constant second residual
+//     sqrt(2 ln(sigma / sigma_min)) (libRSF's MaxMixture), so the cost is a
+//     sum of squares and the chosen label is the true maximum.
+#pragma once
+
+#include <ceres/autodiff_cost_function.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "adjust/adjust_options.h"
+#include "adjust/factors/pose_math.h"
+#include "geometry/mesh_index.h"
+
+namespace hull::adjust {
+
+class SurfaceFactor {
+ public:
+  // model_offset: x_CM, with the model pose block holding x_gC (x_gM = x_gC (+) x_CM).
+  SurfaceFactor(const MeshIndex* mesh, const Pose* model_offset, SurfaceLookup lookup, SurfaceModel model,
+                double sigma0, double sigma1)
+      : mesh_(mesh),
+        offset_(model_offset),
+        lookup_(lookup),
+        max_mixture_(model == SurfaceModel::kMaxMixture),
+        sigma0_(sigma0),
+        sigma1_(sigma1),
+        offset0_(std::sqrt(2.0 * std::log(sigma0 / sigma1))) {}
+
+  template <typename T>
+  bool operator()(const T* x_gC, const T* landmark, T* residual) const {
+    const PoseT<T> Mg = (PoseFromBlock(x_gC) * PoseConstant<T>(*offset_)).Inverse();
+    const Eigen::Matrix<T, 3, 1> lM = Mg * Eigen::Matrix<T, 3, 1>(landmark[0], landmark[1], landmark[2]);
+    const SurfaceDistance sd =
+        mesh_->OrthogonalSignedDistance(ScalarOf(lM), lookup_, hint_.load(std::memory_order_relaxed));
+    hint_.store(sd.face, std::memory_order_relaxed);
+    const T h = sd.normal.cast<T>().dot(lM - sd.point.cast<T>());
+    if (!max_mixture_ || MaxMixtureLabel(ScalarOf(h), sigma0_, sigma1_) == 1) {
+      residual[0] = h / T(sigma1_);
+      residual[1] = T(0);
+    } else {
+      residual[0] = h / T(sigma0_);
+      residual[1] = T(offset0_);
+    }
+    return true;
+  }
+
+  static ceres::CostFunction* Create(const MeshIndex* mesh, const Pose* model_offset, SurfaceLookup lookup,
+                                     SurfaceModel model, double sigma0, double sigma1) {
+    return new ceres::AutoDiffCostFunction<SurfaceFactor, 2, kPoseSize, 3>(
+        new SurfaceFactor(mesh, model_offset, lookup, model, sigma0, sigma1));
+  }
+
+ private:
+  const MeshIndex* mesh_;
+  const Pose* offset_;
+  const SurfaceLookup lookup_;
+  const bool max_mixture_;
+  const double sigma0_, sigma1_, offset0_;
+  mutable std::atomic<int> hint_{-1};
+};
+
+}  // namespace hull::adjust

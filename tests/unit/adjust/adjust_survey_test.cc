@@ -1,0 +1,167 @@
+// Model-assisted bundle adjustment on simulated surveys with truth: what the
+// issue asks it to show (Ozog et al., Section 4.1), for stereo and mono.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "adjust/bundle_adjuster.h"
+#include "adjust/evaluation.h"
+#include "simulate/survey_simulator.h"
+
+namespace hull {
+namespace {
+
+struct ModelRun {
+  AdjustmentResult result;
+  AdjustmentEvaluation eval;
+};
+
+struct Case {
+  SimulatedSurvey survey;
+  std::map<SurfaceModel, ModelRun> runs;
+};
+
+const Case& Get(const std::string& preset) {
+  static std::map<std::string, Case> cache;
+  auto it = cache.find(preset);
+  if (it != cache.end()) return it->second;
+  NullProgress p;
+  Case c;
+  c.survey = SimulateSurvey(SurveyPreset(preset), p);
+  const Pose guess = Pose::FromVector(*c.survey.bundle.manifest.model_pose_guess);
+  for (SurfaceModel m : {SurfaceModel::kNaive, SurfaceModel::kAllOnSurface, SurfaceModel::kMaxMixture}) {
+    AdjustmentOptions o;
+    o.model = m;
+    ModelRun r;
+    r.result = RunAdjustment(c.survey.bundle, c.survey.cad, guess, o, p);
+    r.eval = EvaluateAdjustment(c.survey.bundle, c.survey.cad, r.result);
+    std::printf("[%s %s] %.1f s, %zu iterations\n%s", preset.c_str(), SurfaceModelName(m), r.result.seconds,
+                r.result.iterations.size(), r.eval.ToString().c_str());
+    c.runs[m] = std::move(r);
+  }
+  return cache.emplace(preset, std::move(c)).first->second;
+}
+
+class AdjustSurvey : public ::testing::TestWithParam<std::string> {
+ protected:
+  const ModelRun& R(SurfaceModel m) { return Get(GetParam()).runs.at(m); }
+};
+
+TEST_P(AdjustSurvey, MaxMixtureKeepsTheCylinderHeight) {
+  const ObjectDeviation* cyl = R(SurfaceModel::kMaxMixture).eval.Object("cyl-1");
+  ASSERT_NE(cyl, nullptr);
+  ASSERT_GE(cyl->landmarks, 5);
+  EXPECT_NEAR(cyl->mean_deviation, 0.11, 0.015);
+}
+
+TEST_P(AdjustSurvey, MaxMixtureLabelsAgreeWithTruth) {
+  const AdjustmentEvaluation& e = R(SurfaceModel::kMaxMixture).eval;
+  EXPECT_GT(e.labels_checked, 1000u);
+  EXPECT_GE(e.label_agreement, 0.95);
+}
+
+TEST_P(AdjustSurvey, MaxMixtureLandmarksWellBelowNaive) {
+  const double mm = R(SurfaceModel::kMaxMixture).eval.landmark_rmse;
+  const double naive = R(SurfaceModel::kNaive).eval.landmark_rmse;
+  EXPECT_LT(mm, 0.6 * naive) << "max-mixture " << mm << " m, naive " << naive << " m";
+  EXPECT_LT(mm, 0.01);
+}
+
+TEST_P(AdjustSurvey, AllOnSurfaceSquashesTheCylinder) {
+  // Forced onto the mesh, the cylinder's features lose height relative to the
+  // max-mixture reconstruction (see the issue note for the measured amount).
+  const double aos = R(SurfaceModel::kAllOnSurface).eval.Object("cyl-1")->mean_deviation;
+  const double mm = R(SurfaceModel::kMaxMixture).eval.Object("cyl-1")->mean_deviation;
+  EXPECT_LT(aos, mm - 0.003);
+  // And the fouling as a whole is flattened.
+  double flat = 0, kept = 0;
+  for (const auto& o : R(SurfaceModel::kAllOnSurface).eval.objects) flat += o.mean_deviation * o.landmarks;
+  for (const auto& o : R(SurfaceModel::kMaxMixture).eval.objects) kept += o.mean_deviation * o.landmarks;
+  EXPECT_LT(flat, 0.95 * kept);
+}
+
+TEST_P(AdjustSurvey, NaiveFeaturesAndDvlDisagreeOnTheHull) {
+  const double naive = R(SurfaceModel::kNaive).eval.hull_feature_offset;
+  const double mm = R(SurfaceModel::kMaxMixture).eval.hull_feature_offset;
+  std::printf("features vs DVL (median deviation of hull features): naive %+.4f m, max-mixture %+.4f m\n", naive, mm);
+  EXPECT_GT(std::abs(naive), 0.008);
+  EXPECT_LT(std::abs(mm), 0.5 * std::abs(naive));
+}
+
+TEST_P(AdjustSurvey, DvlResidualSpreadShrinksToAThird) {
+  const AdjustmentEvaluation& e = R(SurfaceModel::kMaxMixture).eval;
+  EXPECT_LE(e.dvl_std_final, e.dvl_std_initial / 3);
+  EXPECT_LE(e.dvl_mad_final, e.dvl_mad_initial / 3);
+}
+
+TEST_P(AdjustSurvey, ServoAndExtrinsicMoveTowardTruth) {
+  const AdjustmentEvaluation& e = R(SurfaceModel::kMaxMixture).eval;
+  EXPECT_LT(e.servo_error_final_deg, 0.5 * e.servo_error_initial_deg);
+  EXPECT_LT(e.extrinsic_error_final_deg, 0.5 * e.extrinsic_error_initial_deg);
+  EXPECT_LT(e.extrinsic_error_final_m, e.extrinsic_error_initial_m);
+}
+
+TEST_P(AdjustSurvey, FractionOnSurfaceSettles) {
+  const auto& it = R(SurfaceModel::kMaxMixture).result.iterations;
+  ASSERT_GE(it.size(), 4u);
+  const double last = it.back().fraction_on_surface;
+  for (std::size_t i = it.size() - 3; i < it.size(); ++i) EXPECT_NEAR(it[i].fraction_on_surface, last, 0.005);
+  EXPECT_GT(last, 0.8);
+  EXPECT_TRUE(R(SurfaceModel::kMaxMixture).result.converged);
+}
+
+INSTANTIATE_TEST_SUITE_P(Presets, AdjustSurvey, ::testing::Values("demo", "mono"));
+
+TEST(AdjustResults, WriteReadRoundTrip) {
+  const ModelRun& r = Get("demo").runs.at(SurfaceModel::kMaxMixture);
+  const std::string dir = (std::filesystem::path(::testing::TempDir()) / "hi_adjust_results").string();
+  WriteAdjustmentResult(r.result, dir);
+  const AdjustmentResult back = ReadAdjustmentResult(dir);
+  ASSERT_EQ(back.landmarks.size(), r.result.landmarks.size());
+  for (std::size_t i = 0; i < back.landmarks.size(); ++i) {
+    EXPECT_EQ(back.landmarks[i].p, r.result.landmarks[i].p);
+    EXPECT_EQ(back.landmarks[i].label, r.result.landmarks[i].label);
+  }
+  EXPECT_EQ(back.poses, r.result.poses);
+  EXPECT_EQ(back.x_gM, r.result.x_gM);
+  EXPECT_EQ(back.iterations.size(), r.result.iterations.size());
+  EXPECT_EQ(back.dvl.size(), r.result.dvl.size());
+  EXPECT_EQ(back.options.model, SurfaceModel::kMaxMixture);
+}
+
+TEST(AdjustJob, CancelStopsWithCancelled) {
+  const Case& c = Get("demo");
+  CallbackProgress p;
+  int updates = 0;
+  CallbackProgress cancelling([&](double, const std::string&) {
+    if (++updates == 3) p.RequestCancel();
+  });
+  struct Forward : Progress {
+    CallbackProgress& cb;
+    CallbackProgress& flag;
+    Forward(CallbackProgress& c, CallbackProgress& f) : cb(c), flag(f) {}
+    void Update(double f, const std::string& m) override { cb.Update(f, m); }
+    bool Cancelled() const override { return flag.Cancelled(); }
+  } forward(cancelling, p);
+  EXPECT_THROW(
+      RunAdjustment(c.survey.bundle, c.survey.cad, Pose::FromVector(*c.survey.bundle.manifest.model_pose_guess),
+                    AdjustmentOptions(), forward),
+      Cancelled);
+}
+
+TEST(AdjustJob, WarmStartAfterSigmaChangeConvergesQuickly) {
+  const Case& c = Get("demo");
+  const ModelRun& prev = c.runs.at(SurfaceModel::kMaxMixture);
+  AdjustmentOptions o;
+  o.sigma1 = 0.03;
+  NullProgress p;
+  const AdjustmentResult r = RunAdjustment(
+      c.survey.bundle, c.survey.cad, Pose::FromVector(*c.survey.bundle.manifest.model_pose_guess), o, p, &prev.result);
+  EXPECT_LT(r.iterations.size(), prev.result.iterations.size());
+  EXPECT_TRUE(r.converged);
+}
+
+}  // namespace
+}  // namespace hull
