@@ -2,7 +2,10 @@
 // point / closest face, the paper's orthogonal signed distance (eq. 5) and
 // the exact signed Euclidean distance. Built on Embree's BVH (the fastest
 // well-kept ray caster in Debian: see docs/benchmarks.md); every answer is
-// refined in double precision on the mesh's own vertices.
+// refined in double precision on the mesh's own vertices. A closest-point
+// query near the surface is usually answered, and proven exact, from the
+// faces around the hint (or the nearest vertex) alone, using each vertex's
+// precomputed clearance; otherwise the BVH finishes the search.
 //
 // All queries are const and thread-safe once constructed. The mesh must
 // outlive the index and must not change while indexed.
