@@ -1,5 +1,6 @@
 // hullinspect-cli adjust: model-assisted bundle adjustment of a survey.
 #include <cstdio>
+#include <filesystem>
 
 #include "adjust/bundle_adjuster.h"
 #include "adjust/evaluation.h"
@@ -82,7 +83,10 @@ int RunAdjust(const CommandArgs& argv) {
     throw InputError({bundle.directory + "/survey.json", 0, 0, "model_pose_guess"},
                      "no model_pose_guess: run 'hullinspect-cli run' (aligns the DVL returns first)");
   }
-  const AdjustmentResult r = RunAdjustment(bundle, mesh, x_gM0, o, progress);
+  AdjustmentResult r = RunAdjustment(bundle, mesh, x_gM0, o, progress);
+  r.bundle_path = std::filesystem::absolute(a.positionals()[0]).string();
+  r.mesh_path = std::filesystem::absolute(mesh_path).string();
+  r.mesh_scale = lo.scale;
   progress.Finish();
   WriteAdjustmentResult(r, out);
   std::printf("%s: %zu iterations, cost %.6g -> %.6g, %.2f s (solver %.2f s), lambda=1 for %.1f %% of %zu landmarks\n",

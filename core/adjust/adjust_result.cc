@@ -39,6 +39,11 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   root.Set("format", "hull-adjustment");
   root.Set("version", AdjustmentResult::kFormatVersion);
   root.Set("model", SurfaceModelName(r.options.model));
+  Json inputs = Json::Object();
+  inputs.Set("bundle", r.bundle_path);
+  inputs.Set("mesh", r.mesh_path);
+  inputs.Set("mesh_scale", r.mesh_scale);
+  root.Set("inputs", inputs);
   Json opt = Json::Object();
   opt.Set("sigma0", r.options.sigma0);
   opt.Set("sigma1", r.options.sigma1);
@@ -119,6 +124,11 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
     r.options.model = ParseSurfaceModel(root.String("model"));
   } catch (const OptionError& e) {
     root.Fail(root.Required("model"), "model", e.what());
+  }
+  if (auto in = root.OptionalObject("inputs")) {
+    r.bundle_path = in->OptionalString("bundle").value_or("");
+    r.mesh_path = in->OptionalString("mesh").value_or("");
+    r.mesh_scale = in->NumberOr("mesh_scale", 1.0);
   }
   const JsonReader opt = root.Object("options");
   r.options.sigma0 = opt.Number("sigma0");

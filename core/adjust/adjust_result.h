@@ -42,6 +42,12 @@ struct DvlResidual {
 struct AdjustmentResult {
   static constexpr int kFormatVersion = 1;
 
+  // Inputs, so that later steps (mapping, the GUI) can find them: absolute
+  // paths of the survey bundle and the prior mesh, and the mesh's load scale.
+  std::string bundle_path;
+  std::string mesh_path;
+  double mesh_scale = 1.0;
+
   AdjustmentOptions options;
   std::vector<std::int64_t> keyframes;
   std::vector<Vector6d> poses;  // x_gv per keyframe
