@@ -1,0 +1,631 @@
+#include "registration/model_alignment.h"
+
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <string>
+
+#include "base/error.h"
+#include "geometry/point_index.h"
+
+namespace hull {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Hull axes in M, orthonormalised: forward f, up u and port p = u x f.
+struct HullFrame {
+  Eigen::Vector3d f, u, p;
+};
+
+HullFrame HullFrameOf(const SurveyManifest& m) {
+  const ModelAxes axes = m.model_axes.value_or(ModelAxes{});
+  HullFrame h;
+  h.f = axes.forward.normalized();
+  h.p = axes.up.cross(h.f).normalized();
+  h.u = h.f.cross(h.p);
+  return h;
+}
+
+// R_gM for a ship upright in g (up -> -z) whose forward axis points at
+// heading psi (rad from north, x of g): f -> (cos psi, sin psi, 0),
+// port -> its left, up -> -z.
+Eigen::Matrix3d UprightRotation(const HullFrame& h, double psi) {
+  Eigen::Matrix3d F, E;
+  F << h.f, h.p, h.u;
+  E.col(0) = Eigen::Vector3d::UnitX();
+  E.col(1) = -Eigen::Vector3d::UnitY();
+  E.col(2) = -Eigen::Vector3d::UnitZ();
+  return Eigen::AngleAxisd(psi, Eigen::Vector3d::UnitZ()).toRotationMatrix() * E * F.transpose();
+}
+
+// Heading (rad) of the hull's forward axis under x_gM.
+double HeadingOf(const HullFrame& h, const Pose& x_gM) {
+  const Eigen::Vector3d f = x_gM.Rotate(h.f);
+  return std::atan2(f.y(), f.x());
+}
+
+double AngleDiff(double a, double b) { return std::abs(WrapAngle(a - b)); }
+
+Eigen::Vector3d Centroid(const std::vector<Eigen::Vector3d>& pts) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& p : pts) c += p;
+  return pts.empty() ? c : Eigen::Vector3d(c / static_cast<double>(pts.size()));
+}
+
+// Mesh samples within `margin` of any of `near_M` (points in M): faces whose
+// bounding sphere comes within the margin are sampled, then each sample is
+// kept if a point is within the margin.
+std::vector<Eigen::Vector3d> SampleNear(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& near_M,
+                                        double spacing, double margin) {
+  std::vector<Eigen::Vector3d> out;
+  if (near_M.empty()) return out;
+  const PointIndex index(near_M);
+  const double m2 = margin * margin;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& face = mesh.faces[f];
+    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(face[0])];
+    const Eigen::Vector3d& b = mesh.vertices[static_cast<std::size_t>(face[1])];
+    const Eigen::Vector3d& c = mesh.vertices[static_cast<std::size_t>(face[2])];
+    const Eigen::Vector3d centre = (a + b + c) / 3.0;
+    const double r = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
+    const auto nn = index.Nearest(centre, 1);
+    if (nn.empty() || nn[0].second > (r + margin) * (r + margin)) continue;
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; i + j <= n; ++j) {
+        const Eigen::Vector3d q = a + (static_cast<double>(i) * (b - a) + static_cast<double>(j) * (c - a)) / n;
+        const auto near = index.Nearest(q, 1);
+        if (!near.empty() && near[0].second <= m2) out.push_back(q);
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> ToModel(const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM) {
+  const Pose x_Mg = x_gM.Inverse();
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(pts_g.size());
+  for (const auto& p : pts_g) out.push_back(x_Mg * p);
+  return out;
+}
+
+// RMS over the points of min(distance to the mesh, truncation).
+double TruncatedSurfaceRms(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM,
+                           double truncation) {
+  if (pts_g.empty()) return 0.0;
+  const Pose x_Mg = x_gM.Inverse();
+  double sum = 0;
+  for (const auto& p : pts_g) {
+    const double d = std::min(index.Closest(x_Mg * p).distance, truncation);
+    sum += d * d;
+  }
+  return std::sqrt(sum / static_cast<double>(pts_g.size()));
+}
+
+double TruncatedSurfaceRmsParallel(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM,
+                                   double truncation) {
+  if (pts_g.empty()) return 0.0;
+  const Pose x_Mg = x_gM.Inverse();
+  std::vector<double> d2(pts_g.size());
+  tbb::parallel_for(std::size_t{0}, pts_g.size(), [&](std::size_t i) {
+    const double d = std::min(index.Closest(x_Mg * pts_g[i]).distance, truncation);
+    d2[i] = d * d;
+  });
+  return std::sqrt(std::accumulate(d2.begin(), d2.end(), 0.0) / static_cast<double>(pts_g.size()));
+}
+
+struct Refined {
+  Pose x_gM;
+  GicpResult gicp;
+  std::size_t target_points = 0;
+  Vector6d observability = Vector6d::Zero();
+  int constrained_directions = 0;
+};
+
+// Degeneracy guard (the "solution remapping" of Zhang, Kaess and Singh,
+// ICRA 2016): GICP's update is kept only along the directions the returns
+// constrain. At the aligned pose, with the returns q_i in M, their centroid c,
+// RMS radius L and the closest faces' normals n_i, the point-to-plane
+// information of a motion s = (L * rotation about c, translation) is
+//   H = 1/N sum J_i^T J_i,  J_i = [((q_i - c) x n_i)^T / L, n_i^T],
+// in m^2 of distance per m^2 of motion. Eigen-directions with eigenvalue
+// below min_observability (e.g. in-plane motion and yaw over a flat bottom,
+// motion along a prismatic stretch) are returned to the start: the data say
+// nothing there, and GICP drifts freely along them (several degrees of yaw
+// on the demo's flat bottom).
+void ConstrainUpdate(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM0,
+                     double min_observability, double truncation, Refined* r) {
+  const Pose x_Mg1 = r->x_gM.Inverse();
+  std::vector<Eigen::Vector3d> q(pts_g.size()), n(pts_g.size());
+  std::vector<char> inlier(pts_g.size(), 0);
+  tbb::parallel_for(std::size_t{0}, pts_g.size(), [&](std::size_t i) {
+    q[i] = x_Mg1 * pts_g[i];
+    const ClosestPoint cp = index.Closest(q[i]);
+    n[i] = index.mesh().face_normals[static_cast<std::size_t>(cp.face)];
+    inlier[i] = cp.distance < truncation;
+  });
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  int m = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (inlier[i]) {
+      c += q[i];
+      ++m;
+    }
+  }
+  if (m < 6) return;
+  c /= m;
+  double L2 = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (inlier[i]) L2 += (q[i] - c).squaredNorm();
+  }
+  const double L = std::max(1e-3, std::sqrt(L2 / m));
+  Matrix6d H = Matrix6d::Zero();
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    if (!inlier[i]) continue;
+    Vector6d J;
+    J << (q[i] - c).cross(n[i]) / L, n[i];
+    H += J * J.transpose();
+  }
+  H /= m;
+  const Eigen::SelfAdjointEigenSolver<Matrix6d> eig(H);
+  r->observability = eig.eigenvalues();
+  r->constrained_directions = 0;
+  // The way back to the start, G = x_Mg0 (-)x_Mg1, as a motion about c:
+  // G(q) = R_G (q - c) + c + w.
+  const Pose G = x_gM0.Inverse() * r->x_gM;
+  const Eigen::AngleAxisd aa(G.quaternion());
+  Vector6d s;
+  s << L * aa.angle() * aa.axis(), G * c - c;
+  Vector6d back = Vector6d::Zero();
+  for (int k = 0; k < 6; ++k) {
+    if (eig.eigenvalues()[k] >= min_observability) {
+      ++r->constrained_directions;
+    } else {
+      const Vector6d v = eig.eigenvectors().col(k);
+      back += v.dot(s) * v;
+    }
+  }
+  const Eigen::Vector3d rot = back.head<3>() / L;
+  const Eigen::Quaterniond qb(
+      Eigen::AngleAxisd(rot.norm(), rot.norm() > 0 ? Eigen::Vector3d(rot.normalized()) : Eigen::Vector3d::UnitX()));
+  const Pose partial(qb, c + back.tail<3>() - (qb * c));
+  r->x_gM = (partial * x_Mg1).Inverse();
+}
+
+// GICP of the returns (source, g) to the mesh samples near them (target, M)
+// from x_gM0 (the GICP transform is x_Mg), then the degeneracy guard.
+Refined Refine(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM0,
+               const ModelAlignmentOptions& o) {
+  const std::vector<Eigen::Vector3d> target =
+      SampleNear(index.mesh(), ToModel(pts_g, x_gM0), o.sample_spacing, o.sample_margin);
+  Refined r;
+  r.target_points = target.size();
+  r.gicp = AlignGicp(pts_g, target, x_gM0.Inverse(), o.gicp);
+  const bool usable = r.gicp.status == GicpStatus::kConverged || r.gicp.status == GicpStatus::kMaxIterations;
+  r.x_gM = usable ? r.gicp.transform.Inverse() : x_gM0;
+  if (usable && o.min_observability > 0) {
+    ConstrainUpdate(index, pts_g, x_gM0, o.min_observability, o.score_truncation, &r);
+  }
+  return r;
+}
+
+// A few Levenberg-damped Gauss-Newton steps of point-to-plane ICP against
+// the exact mesh (closest faces looked up afresh each step), with returns
+// farther than `truncation` left out; cheap enough for dozens of hypotheses.
+// The motion is parametrised about the returns' centroid in M.
+Pose PointToPlaneIcp(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM,
+                     int iterations, double truncation) {
+  Pose x_Mg = x_gM.Inverse();
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<Eigen::Vector3d> q;
+    q.reserve(pts_g.size());
+    for (const auto& p : pts_g) q.push_back(x_Mg * p);
+    const Eigen::Vector3d c = Centroid(q);
+    Matrix6d H = Matrix6d::Zero();
+    Vector6d b = Vector6d::Zero();
+    int n = 0;
+    for (const auto& qi : q) {
+      const ClosestPoint cp = index.Closest(qi);
+      if (cp.distance > truncation) continue;
+      const Eigen::Vector3d& nrm = index.mesh().face_normals[static_cast<std::size_t>(cp.face)];
+      Vector6d J;
+      J << (qi - c).cross(nrm), nrm;
+      const double r = nrm.dot(qi - cp.point);
+      H += J * J.transpose();
+      b += J * r;
+      ++n;
+    }
+    if (n < 6) break;
+    H += 1e-3 * n * Matrix6d::Identity();
+    const Vector6d xi = -H.ldlt().solve(b);
+    const Eigen::Vector3d w = xi.head<3>();
+    const Eigen::Quaterniond dq(
+        Eigen::AngleAxisd(w.norm(), w.norm() > 0 ? Eigen::Vector3d(w.normalized()) : Eigen::Vector3d::UnitX()));
+    x_Mg = Pose(dq, c + xi.tail<3>() - dq * c) * x_Mg;
+    if (xi.tail<3>().norm() < 1e-4 && w.norm() < 1e-5) break;
+  }
+  return x_Mg.Inverse();
+}
+
+// A coarse-search hypothesis: heading and the anchor the returns' centroid lands on.
+struct Hypothesis {
+  double heading = 0;
+  int anchor = 0;
+  Pose x_gM;
+  double score = 0;
+};
+
+struct CoarseResult {
+  Pose start;      // the winning placement before any refinement
+  Pose candidate;  // after the coarse search's own refinement (the final GICP starts here)
+};
+
+// The coarse search (see CoarseSearchReport and ModelAlignmentOptions).
+CoarseResult CoarseSearch(const SurveyBundle& bundle, const TriangleMesh& mesh, const MeshIndex& index,
+                          const std::vector<DvlPoint>& returns, const std::vector<Eigen::Vector3d>& pts_g,
+                          const ModelAlignmentOptions& o, Progress& progress, CoarseSearchReport* report) {
+  const HullFrame hf = HullFrameOf(bundle.manifest);
+  const Eigen::Vector3d c_g = Centroid(pts_g);
+
+  // The footprint: its normal (when planar) and horizontal principal axis.
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d mean_beam = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < pts_g.size(); ++i) {
+    const Eigen::Vector3d d = pts_g[i] - c_g;
+    cov += d * d.transpose();
+    mean_beam += returns[i].direction;
+  }
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov);
+  const Eigen::Vector3d ev = eig.eigenvalues().cwiseMax(0.0);
+  const bool planar = ev[0] < 0.01 * ev[1];  // thinner than a tenth of its narrower extent
+  Eigen::Vector3d n_g = eig.eigenvectors().col(0);
+  if (n_g.dot(mean_beam) > 0) n_g = -n_g;  // outward: toward the vehicle
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig2(cov.topLeftCorner<2, 2>());
+  const Eigen::Vector2d axis = eig2.eigenvectors().col(1);
+  const double alpha = std::atan2(axis.y(), axis.x());
+  // The vehicle's mean heading (circular mean of nav yaw).
+  Eigen::Vector2d hv = Eigen::Vector2d::Zero();
+  for (const NavRecord& n : bundle.nav) hv += Eigen::Vector2d(std::cos(n.x_gv[5]), std::sin(n.x_gv[5]));
+  const double beta = std::atan2(hv.y(), hv.x());
+
+  std::vector<double> headings;
+  auto add_heading = [&](double h) {
+    h = WrapAngle(h);
+    for (double g : headings) {
+      if (AngleDiff(g, h) < 5 * kDeg) return;
+    }
+    headings.push_back(h);
+  };
+  for (double h : {beta, beta + M_PI, alpha, alpha + M_PI, alpha + M_PI / 2, alpha - M_PI / 2}) add_heading(h);
+  if (o.heading_step_deg > 0) {
+    const int steps = static_cast<int>(std::floor(360.0 / o.heading_step_deg + 1e-9));
+    for (int k = 0; k < steps; ++k) add_heading(beta + k * o.heading_step_deg * kDeg);
+  }
+
+  // Anchors: the surface thinned to about one point per anchor_spacing voxel.
+  const std::vector<Eigen::Vector3d> anchors =
+      VoxelDownsample(SampleMeshSurface(mesh, o.anchor_spacing), o.anchor_spacing);
+  std::vector<Eigen::Vector3d> anchor_point(anchors.size()), anchor_normal(anchors.size());
+  tbb::parallel_for(std::size_t{0}, anchors.size(), [&](std::size_t i) {
+    const ClosestPoint cp = index.Closest(anchors[i]);
+    anchor_point[i] = cp.point;
+    anchor_normal[i] = mesh.face_normals[static_cast<std::size_t>(cp.face)];
+  });
+
+  std::vector<Hypothesis> hyps;
+  const double cos_max = std::cos(o.max_normal_angle_deg * kDeg);
+  for (double h : headings) {
+    const Eigen::Matrix3d R = UprightRotation(hf, h);
+    const Eigen::Vector3d n_M = R.transpose() * n_g;
+    for (std::size_t a = 0; a < anchors.size(); ++a) {
+      if (planar && anchor_normal[a].dot(n_M) < cos_max) continue;
+      Hypothesis hy;
+      hy.heading = h;
+      hy.anchor = static_cast<int>(a);
+      hy.x_gM = Pose(R, c_g - R * anchor_point[a]);
+      hyps.push_back(hy);
+    }
+  }
+  report->ran = true;
+  report->hypotheses = hyps.size();
+  if (hyps.empty()) throw InputError({bundle.directory, 0, 0, "dvl.csv"}, "no hull placement fits the DVL returns");
+
+  // Stage 1: score every hypothesis on an even subsample of the returns.
+  std::vector<Eigen::Vector3d> sub;
+  const std::size_t stride = std::max<std::size_t>(1, pts_g.size() / static_cast<std::size_t>(o.score_points));
+  for (std::size_t i = 0; i < pts_g.size(); i += stride) sub.push_back(pts_g[i]);
+  progress.Update(0.05, "coarse search: scoring " + std::to_string(hyps.size()) + " placements");
+  tbb::parallel_for(std::size_t{0}, hyps.size(), [&](std::size_t i) {
+    if (progress.Cancelled()) return;
+    hyps[i].score = TruncatedSurfaceRms(index, sub, hyps[i].x_gM, o.score_truncation);
+  });
+  progress.ThrowIfCancelled();
+  std::sort(hyps.begin(), hyps.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.score < b.score; });
+
+  // The tie-break reference: among the placements the scores cannot tell
+  // apart (a flat or prismatic stretch fits anywhere along it), those whose
+  // heading is nearest the vehicle's, and their mean anchor: the place that
+  // minimises the largest possible error along the ambiguous stretch.
+  const double tie = hyps.front().score + o.tie_tolerance;
+  double best_dh = M_PI;
+  for (const Hypothesis& h : hyps) {
+    if (h.score > tie) break;
+    best_dh = std::min(best_dh, AngleDiff(h.heading, beta));
+  }
+  Eigen::Vector3d ref = Eigen::Vector3d::Zero();
+  int nref = 0;
+  for (const Hypothesis& h : hyps) {
+    if (h.score > tie) break;
+    if (AngleDiff(h.heading, beta) <= best_dh + 1e-9) {
+      ref += anchor_point[static_cast<std::size_t>(h.anchor)];
+      ++nref;
+    }
+  }
+  ref /= std::max(1, nref);
+  int prior_pick = -1;
+  double best_ref = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < hyps.size() && hyps[i].score <= tie; ++i) {
+    const double d = (anchor_point[static_cast<std::size_t>(hyps[i].anchor)] - ref).norm();
+    if (AngleDiff(hyps[i].heading, beta) <= best_dh + 1e-9 && d < best_ref) {
+      best_ref = d;
+      prior_pick = static_cast<int>(i);
+    }
+  }
+
+  // Stage 2: the prior pick and the best distinct hypotheses get a few
+  // point-to-plane ICP steps on the subsample and are scored again (a grid
+  // of anchors and headings rarely lands on a curved stretch's best fit).
+  struct Candidate {
+    Pose start, x_gM;
+    double score = 0;
+    Eigen::Vector3d landing = Eigen::Vector3d::Zero();  // where the returns' centroid lands, in M
+    double heading = 0;
+    bool prior = false;
+    Refined refined;
+  };
+  auto distinct_from = [&](const std::vector<Candidate>& chosen, const Eigen::Vector3d& landing, double heading) {
+    for (const Candidate& c : chosen) {
+      if ((c.landing - landing).norm() < 2.0 && AngleDiff(c.heading, heading) < 20 * kDeg) return false;
+    }
+    return true;
+  };
+  std::vector<Candidate> stage2;
+  auto add2 = [&](int i, bool prior) {
+    const Hypothesis& h = hyps[static_cast<std::size_t>(i)];
+    Candidate c;
+    c.start = h.x_gM;
+    c.landing = anchor_point[static_cast<std::size_t>(h.anchor)];
+    c.heading = h.heading;
+    c.prior = prior;
+    stage2.push_back(c);
+  };
+  if (prior_pick >= 0) add2(prior_pick, true);
+  for (std::size_t i = 0; i < hyps.size() && static_cast<int>(stage2.size()) < o.icp_hypotheses; ++i) {
+    if (distinct_from(stage2, anchor_point[static_cast<std::size_t>(hyps[i].anchor)], hyps[i].heading)) {
+      add2(static_cast<int>(i), false);
+    }
+  }
+  progress.Update(0.1, "coarse search: point-to-plane ICP of " + std::to_string(stage2.size()) + " placements");
+  tbb::parallel_for(std::size_t{0}, stage2.size(), [&](std::size_t i) {
+    if (progress.Cancelled()) return;
+    Candidate& c = stage2[i];
+    c.x_gM = PointToPlaneIcp(index, sub, c.start, 10, o.score_truncation);
+    c.score = TruncatedSurfaceRms(index, sub, c.x_gM, o.score_truncation);
+    c.landing = c.x_gM.Inverse() * c_g;
+    c.heading = HeadingOf(hf, c.x_gM);
+  });
+  progress.ThrowIfCancelled();
+  std::stable_sort(stage2.begin(), stage2.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.prior != b.prior) return a.prior;  // the prior pick stays first
+    return a.score < b.score;
+  });
+
+  // Stage 3: the best distinct ones are refined by GICP (against a lighter
+  // target) and scored on every return.
+  std::vector<Candidate> cands;
+  for (const Candidate& c : stage2) {
+    if (static_cast<int>(cands.size()) >= o.refine_hypotheses) break;
+    if (distinct_from(cands, c.landing, c.heading)) cands.push_back(c);
+  }
+  ModelAlignmentOptions light = o;
+  light.sample_spacing = std::max(o.sample_spacing, o.candidate_sample_spacing);
+  for (std::size_t k = 0; k < cands.size(); ++k) {
+    progress.ThrowIfCancelled();
+    progress.Update(
+        0.15 + 0.5 * static_cast<double>(k) / static_cast<double>(cands.size()),
+        "coarse search: GICP of placement " + std::to_string(k + 1) + " of " + std::to_string(cands.size()));
+    Candidate& c = cands[k];
+    c.refined = Refine(index, pts_g, c.x_gM, light);
+    c.score = TruncatedSurfaceRmsParallel(index, pts_g, c.refined.x_gM, o.score_truncation);
+    c.landing = c.refined.x_gM.Inverse() * c_g;
+    c.heading = HeadingOf(hf, c.refined.x_gM);
+  }
+  report->refined = cands.size();
+
+  // Winner: among the refined placements tied with the best score, the one
+  // whose heading is nearest the vehicle's (10 deg buckets), then nearest the
+  // reference place.
+  double best = std::numeric_limits<double>::infinity();
+  for (const Candidate& c : cands) best = std::min(best, c.score);
+  std::vector<const Candidate*> tied;
+  for (const Candidate& c : cands) {
+    if (c.score <= best + o.tie_tolerance) tied.push_back(&c);
+  }
+  auto key = [&](const Candidate* c) {
+    return std::make_pair(std::floor(AngleDiff(c->heading, beta) / (10 * kDeg)), (c->landing - ref).norm());
+  };
+  const Candidate* win = *std::min_element(tied.begin(), tied.end(),
+                                           [&](const Candidate* a, const Candidate* b) { return key(a) < key(b); });
+  report->tied = tied.size();
+  for (const Candidate* a : tied) {
+    for (const Candidate* b : tied) {
+      report->tied_position_spread = std::max(report->tied_position_spread, (a->landing - b->landing).norm());
+      report->tied_heading_spread_deg =
+          std::max(report->tied_heading_spread_deg, AngleDiff(a->heading, b->heading) / kDeg);
+    }
+  }
+  report->best_score = win->score;
+  report->start = win->start;
+  return {win->start, win->refined.x_gM};
+}
+
+}  // namespace
+
+GicpOptions DvlGicpOptions() {
+  GicpOptions g;
+  g.voxel_size = 0.0;
+  g.max_correspondence_distance = 0.5;
+  g.coarse_voxel_size = 0.3;
+  g.coarse_max_correspondence_distance = 1.5;
+  g.correspondence_randomness = 10;
+  // 0.1 mm and ~0.006 deg per iteration: far below what the drifting
+  // navigation lets the returns resolve, and it stops the slow drift along
+  // unconstrained directions (the degeneracy guard undoes that drift anyway).
+  g.transformation_epsilon = 1e-4;
+  g.rotation_epsilon = 1e-4;
+  return g;
+}
+
+void ModelAlignmentOptions::Check() const {
+  gicp.Check();
+  if (!(sample_spacing > 0 && std::isfinite(sample_spacing)))
+    throw OptionError("sample_spacing", "must be positive (m)");
+  if (!(sample_margin > 0 && std::isfinite(sample_margin))) throw OptionError("sample_margin", "must be positive (m)");
+  if (!(min_observability >= 0 && std::isfinite(min_observability))) {
+    throw OptionError("min_observability", "must be >= 0 (0: keep every direction of the GICP update)");
+  }
+  if (!(depth_window >= 0 && std::isfinite(depth_window))) {
+    throw OptionError("depth_window", "must be >= 0 (s; 0: no depth correction)");
+  }
+  if (!(max_beam_range > 0)) throw OptionError("max_beam_range", "must be positive (m)");
+  if (!(anchor_spacing > 0 && std::isfinite(anchor_spacing)))
+    throw OptionError("anchor_spacing", "must be positive (m)");
+  if (!(heading_step_deg >= 0 && heading_step_deg < 360)) {
+    throw OptionError("heading_step_deg", "must be in [0, 360) (0: no sweep)");
+  }
+  if (!(max_normal_angle_deg > 0 && max_normal_angle_deg <= 180)) {
+    throw OptionError("max_normal_angle_deg", "must be in (0, 180]");
+  }
+  if (score_points < 8) throw OptionError("score_points", "must be >= 8");
+  if (icp_hypotheses < 1) throw OptionError("icp_hypotheses", "must be >= 1");
+  if (refine_hypotheses < 1) throw OptionError("refine_hypotheses", "must be >= 1");
+  if (!(candidate_sample_spacing > 0 && std::isfinite(candidate_sample_spacing))) {
+    throw OptionError("candidate_sample_spacing", "must be positive (m)");
+  }
+  if (!(tie_tolerance >= 0 && std::isfinite(tie_tolerance))) throw OptionError("tie_tolerance", "must be >= 0 (m)");
+  if (!(score_truncation > 0 && std::isfinite(score_truncation))) {
+    throw OptionError("score_truncation", "must be positive (m)");
+  }
+}
+
+std::optional<Pose> ModelPoseGuess(const SurveyBundle& bundle) {
+  if (!bundle.manifest.model_pose_guess) return std::nullopt;
+  return Pose::FromVector(*bundle.manifest.model_pose_guess);
+}
+
+std::vector<Eigen::Vector3d> SampleMeshSurface(const TriangleMesh& mesh, double spacing) {
+  std::vector<Eigen::Vector3d> out;
+  if (!(spacing > 0)) throw std::invalid_argument("SampleMeshSurface: spacing must be positive");
+  for (const Face& face : mesh.faces) {
+    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(face[0])];
+    const Eigen::Vector3d& b = mesh.vertices[static_cast<std::size_t>(face[1])];
+    const Eigen::Vector3d& c = mesh.vertices[static_cast<std::size_t>(face[2])];
+    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
+    for (int i = 0; i <= n; ++i) {
+      for (int j = 0; i + j <= n; ++j) {
+        out.push_back(a + (static_cast<double>(i) * (b - a) + static_cast<double>(j) * (c - a)) / n);
+      }
+    }
+  }
+  return out;
+}
+
+std::vector<double> DvlRangeResiduals(const std::vector<DvlPoint>& returns, const MeshIndex& mesh_in_M,
+                                      const Pose& x_gM, double max_beam_range) {
+  const Pose x_Mg = x_gM.Inverse();
+  std::vector<double> out(returns.size(), kNaN);
+  tbb::parallel_for(std::size_t{0}, returns.size(), [&](std::size_t i) {
+    const DvlPoint& r = returns[i];
+    const RayHit hit = mesh_in_M.Raycast(x_Mg * r.origin, x_Mg.Rotate(r.direction), max_beam_range);
+    if (hit.hit) out[i] = hit.range - r.range;
+  });
+  return out;
+}
+
+ModelAlignment AlignDvlToModel(const SurveyBundle& bundle, const TriangleMesh& mesh_in_M,
+                               std::optional<Pose> initial_x_gM, const ModelAlignmentOptions& o, Progress& progress) {
+  o.Check();
+  if (mesh_in_M.empty()) throw std::invalid_argument("AlignDvlToModel: the mesh has no faces");
+  TriangleMesh mesh = mesh_in_M;
+  if (mesh.face_normals.size() != mesh.faces.size()) mesh.ComputeNormals();
+  const MeshIndex index(mesh);
+  std::vector<double> servo;
+  servo.reserve(bundle.nav.size());
+  for (const NavRecord& n : bundle.nav) servo.push_back(n.servo);
+  const std::vector<DvlPoint> returns =
+      DvlPointsInG(bundle, InitialPosesWithZpr(bundle, o.depth_window, o.measured_roll_pitch), servo);
+  const std::vector<Eigen::Vector3d> pts_g = PointsOf(returns);
+  const auto k = static_cast<std::size_t>(o.gicp.correspondence_randomness);
+  if (pts_g.size() < std::max<std::size_t>(k, 8)) {
+    throw InputError({bundle.directory, 0, 0, "dvl.csv"}, "only " + std::to_string(pts_g.size()) +
+                                                              " DVL returns: too few to align the model (need " +
+                                                              std::to_string(std::max<std::size_t>(k, 8)) + ")");
+  }
+
+  progress.ThrowIfCancelled();
+  ModelAlignment out;
+  out.dvl_points = pts_g.size();
+  Refined r;
+  if (initial_x_gM) {
+    out.initial_x_gM = *initial_x_gM;
+    progress.Update(0.1, "aligning the DVL returns to the model (GICP)");
+    r = Refine(index, pts_g, out.initial_x_gM, o);
+  } else {
+    // The winner's placement before any refinement is the "before" of the
+    // residuals; the final GICP (full target) starts from its refined pose.
+    const CoarseResult c = CoarseSearch(bundle, mesh, index, returns, pts_g, o, progress, &out.coarse);
+    out.initial_x_gM = c.start;
+    progress.Update(0.7, "aligning the DVL returns to the model (GICP)");
+    r = Refine(index, pts_g, c.candidate, o);
+  }
+  out.x_gM = r.x_gM;
+  out.gicp = r.gicp;
+  out.observability = r.observability;
+  out.constrained_directions = r.constrained_directions;
+  out.target_points = r.target_points;
+  progress.ThrowIfCancelled();
+
+  progress.Update(0.9, "DVL range residuals");
+  const std::vector<double> before = DvlRangeResiduals(returns, index, out.initial_x_gM, o.max_beam_range);
+  const std::vector<double> after = DvlRangeResiduals(returns, index, out.x_gM, o.max_beam_range);
+  double sb = 0, sa = 0;
+  out.residuals.reserve(returns.size());
+  for (std::size_t i = 0; i < returns.size(); ++i) {
+    out.residuals.push_back({returns[i].keyframe, returns[i].beam, returns[i].range, before[i], after[i]});
+    if (std::isfinite(before[i]) && std::isfinite(after[i])) {
+      sb += before[i] * before[i];
+      sa += after[i] * after[i];
+      ++out.residual_beams;
+    }
+  }
+  if (out.residual_beams > 0) {
+    out.residual_rms_before = std::sqrt(sb / static_cast<double>(out.residual_beams));
+    out.residual_rms_after = std::sqrt(sa / static_cast<double>(out.residual_beams));
+  }
+  out.surface_rms_before = TruncatedSurfaceRmsParallel(index, pts_g, out.initial_x_gM, o.score_truncation);
+  out.surface_rms_after = TruncatedSurfaceRmsParallel(index, pts_g, out.x_gM, o.score_truncation);
+  progress.Update(1.0, "aligned");
+  return out;
+}
+
+}  // namespace hull
