@@ -152,6 +152,31 @@ TEST(MeshIndexRaycast, BoxKnownAnswers) {
   EXPECT_FALSE(index.Raycast(Vector3d(-5, 0, 0), Vector3d::Zero()).hit);
 }
 
+TEST(MeshIndexRaycast, EdgesAndVerticesAreWatertight) {
+  // The x = 0 side is split along y + z = 1; rays along that diagonal and
+  // through the corners must not slip between the two triangles.
+  const TriangleMesh box = MakeBox(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
+  const MeshIndex index(box);
+  for (double y = 0.0; y <= 1.0; y += 0.125) {
+    const RayHit h = index.Raycast(Vector3d(-3, y, 1.0 - y), Vector3d(1, 0, 0));
+    ASSERT_TRUE(h.hit) << "y = " << y;
+    EXPECT_DOUBLE_EQ(h.range, 3.0);
+  }
+  // A dense fan of rays through the middle of a subdivided sphere: all hit.
+  const TriangleMesh sphere = MakeIcosphere(1.0, 3);
+  const MeshIndex sindex(sphere);
+  std::mt19937 rng(2);
+  for (int i = 0; i < 2000; ++i) {
+    const Vector3d d = RandomUnit(rng);
+    EXPECT_TRUE(sindex.Raycast(Vector3d::Zero(), d).hit);
+    // Aimed exactly at a vertex from outside.
+    const Vector3d& v = sphere.vertices[i % sphere.vertices.size()];
+    const RayHit h = sindex.Raycast(3.0 * v, -v);
+    ASSERT_TRUE(h.hit);
+    EXPECT_NEAR(h.range, 2.0, 1e-12);
+  }
+}
+
 TEST(MeshIndexRaycast, RayStartingOnTheSurfaceLeavesIt) {
   const TriangleMesh box = MakeBox(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
   const MeshIndex index(box);
