@@ -23,6 +23,7 @@ const Command kCommands[] = {
     {"validate", hull::cli::RunValidate, "check a survey bundle or acoustic sequence against the contract"},
     {"info", hull::cli::RunInfo, "summarise a survey bundle, acoustic sequence or mesh"},
     {"align", hull::cli::RunAlign, "initial model pose: align DVL returns to the mesh (GICP)"},
+    {"run", hull::cli::RunPipeline, "the whole pipeline without a display (alignment, adjustment, mapping)"},
     {"adjust", hull::cli::RunAdjust, "model-assisted bundle adjustment (naive, all-on-surface, max-mixture)"},
     {"sonar", hull::cli::RunSonar, "reconstruct features from an acoustic sequence with the sonar EKF"},
 };

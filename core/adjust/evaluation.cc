@@ -112,6 +112,7 @@ AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMes
   std::unordered_map<std::int64_t, const TrueLandmark*> truth;
   for (const auto& l : t.landmarks) truth[l.landmark] = &l;
   std::map<std::string, std::pair<double, int>> per_object;
+  std::map<std::string, double> per_object_truth;
   double s_all = 0, s_hull = 0, s_obj = 0;
   std::size_t n_hull = 0, n_obj = 0, agree = 0;
   std::vector<double> hull_dev;
@@ -158,6 +159,7 @@ AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMes
       auto& acc = per_object[tl.object];
       acc.first += l.deviation;
       acc.second += 1;
+      per_object_truth[tl.object] += tl.deviation;
     }
     const double td = std::abs(tl.deviation);
     if (td < 0.02 || td > 0.08) {
@@ -180,6 +182,7 @@ AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMes
     if (it != per_object.end()) {
       d.landmarks = it->second.second;
       d.mean_deviation = it->second.first / it->second.second;
+      d.true_mean_deviation = per_object_truth[o.id] / it->second.second;
     }
     e.objects.push_back(d);
   }
@@ -235,8 +238,9 @@ std::string AdjustmentEvaluation::ToString() const {
                 extrinsic_error_initial_deg, extrinsic_error_final_deg);
   s += buf;
   for (const auto& o : objects) {
-    std::snprintf(buf, sizeof(buf), "  %-10s %-8s height %.3f m, mean deviation %.3f m over %d landmarks\n",
-                  o.id.c_str(), o.kind.c_str(), o.height, o.mean_deviation, o.landmarks);
+    std::snprintf(buf, sizeof(buf),
+                  "  %-10s %-8s height %.3f m, mean deviation %.3f m (truth %.3f m) over %d landmarks\n", o.id.c_str(),
+                  o.kind.c_str(), o.height, o.mean_deviation, o.true_mean_deviation, o.landmarks);
     s += buf;
   }
   return s;

@@ -25,8 +25,9 @@ namespace hull {
 struct ObjectDeviation {
   std::string id;
   std::string kind;
-  double height = 0;          // true height
-  double mean_deviation = 0;  // mean estimated deviation of its landmarks
+  double height = 0;               // true height
+  double mean_deviation = 0;       // mean estimated deviation of its landmarks
+  double true_mean_deviation = 0;  // mean true deviation of the same landmarks
   int landmarks = 0;
 };
 

@@ -381,7 +381,12 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
       double range = kNoReturn;
       bool drop = false;
       if (hit.hit) {
-        if (r.Bernoulli(o.dvl_dropout)) {
+        // A return off foreign structure where the beam would miss the hull
+        // altogether (a patch grazed at the hull's silhouette) is one a DVL's
+        // bottom track rejects: treat it as a drop-out.
+        const bool grazing =
+            face_object[static_cast<std::size_t>(hit.face)] >= 0 && !cad.Raycast(o_m, dir, o.dvl_max_range).hit;
+        if (grazing || r.Bernoulli(o.dvl_dropout)) {
           drop = true;
         } else {
           range = hit.range + r.TruncatedGaussian(o.noise.dvl_range_sigma, 4.0);

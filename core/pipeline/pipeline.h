@@ -1,0 +1,64 @@
+// The end-to-end job: survey bundle + prior mesh -> initial alignment (GICP
+// of the DVL returns) -> model-assisted bundle adjustment -> results on disk.
+// Qt-free; the GUI runs the same steps in worker threads, one at a time, and
+// the CLI's `run` command (the headless main job) runs them in a row.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "adjust/adjust_options.h"
+#include "adjust/adjust_result.h"
+#include "adjust/evaluation.h"
+#include "base/progress.h"
+#include "geometry/triangle_mesh.h"
+#include "registration/model_alignment.h"
+#include "survey/survey.h"
+
+namespace hull {
+
+struct PipelineInputs {
+  SurveyBundle bundle;
+  TriangleMesh mesh;        // the prior (CAD) mesh in M
+  std::string bundle_path;  // absolute
+  std::string mesh_path;    // absolute
+  double mesh_scale = 1.0;
+};
+
+// Reads the bundle and its mesh (mesh_path empty: the bundle's model_hint).
+// Throws InputError naming the file at fault.
+PipelineInputs LoadPipelineInputs(const std::string& bundle_dir, const std::string& mesh_path = "",
+                                  double mesh_scale = 1.0);
+
+struct PipelineOptions {
+  // GICP of the DVL returns to the mesh, from the bundle's model_pose_guess
+  // when it has one, else after a coarse search (see model_alignment.h).
+  ModelAlignmentOptions alignment;
+  AdjustmentOptions adjustment;
+  // Also run the two baselines (naive, all-on-surface) for comparison.
+  bool compare_models = false;
+
+  void Check() const;  // throws OptionError
+};
+
+struct PipelineResult {
+  ModelAlignment alignment;
+  AdjustmentResult adjustment;                     // with options.adjustment.model
+  std::vector<AdjustmentResult> baselines;         // compare_models: the other two models
+  std::optional<AdjustmentEvaluation> evaluation;  // when the bundle has truth
+  std::vector<AdjustmentEvaluation> baseline_evaluations;
+};
+
+// Step 1: the initial model pose.
+ModelAlignment RunAlignment(const PipelineInputs& in, const PipelineOptions& options, Progress& progress);
+// Step 2: adjustment from an alignment (warm: optional previous result).
+AdjustmentResult RunAdjustmentStep(const PipelineInputs& in, const Pose& x_gM_initial, const AdjustmentOptions& options,
+                                   Progress& progress, const AdjustmentResult* warm = nullptr);
+// All steps.
+PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& options, Progress& progress);
+
+// Writes DIR/alignment.json, DIR/adjustment/ (and DIR/adjustment-<model>/
+// for the baselines), DIR/evaluation.txt with truth, and DIR/summary.json.
+void WritePipelineResult(const PipelineInputs& in, const PipelineResult& result, const std::string& dir);
+
+}  // namespace hull
