@@ -1,0 +1,98 @@
+#include "ui/pick_details.h"
+
+#include <QStringList>
+#include <cmath>
+
+namespace hull::ui {
+
+namespace {
+
+QString Vec3(const Eigen::Vector3d& v, const char* unit = "m") {
+  return QStringLiteral("(%1, %2, %3) %4")
+      .arg(v.x(), 0, 'f', 3)
+      .arg(v.y(), 0, 'f', 3)
+      .arg(v.z(), 0, 'f', 3)
+      .arg(QLatin1String(unit));
+}
+
+QString Degrees(double rad) { return QStringLiteral("%1°").arg(rad * 180.0 / M_PI, 0, 'f', 2); }
+
+QString Metres(double m) { return QStringLiteral("%1 m").arg(m, 0, 'f', 3); }
+
+}  // namespace
+
+PickInfo DescribeLandmark(const SurveyOverlays& overlays, int index) {
+  PickInfo info;
+  if (index < 0 || index >= static_cast<int>(overlays.landmarks.size())) return info;
+  const LandmarkMarker& l = overlays.landmarks[index];
+  info.kind = PickKind::kLandmark;
+  info.id = QString::number(l.id);
+  info.title = QStringLiteral("Landmark %1").arg(l.id);
+  info.rows.append({QStringLiteral("Position (g)"), Vec3(l.position)});
+  info.rows.append({QStringLiteral("Source"), QString::fromLatin1(LandmarkSourceName(overlays.landmark_source))});
+  info.rows.append({QStringLiteral("Observations"), QString::number(l.observations)});
+  if (l.has_truth) {
+    info.rows.append({QStringLiteral("True deviation"), QStringLiteral("%1 mm").arg(l.deviation * 1000.0, 0, 'f', 1)});
+    info.rows.append({QStringLiteral("Label"),
+                      l.foreign() ? QStringLiteral("foreign (object %1)").arg(QString::fromStdString(l.object))
+                                  : QStringLiteral("on the hull")});
+  }
+  return info;
+}
+
+PickInfo DescribeKeyframe(const SurveyBundle& bundle, const SurveyOverlays& overlays, int nav_index) {
+  PickInfo info;
+  if (nav_index < 0 || nav_index >= static_cast<int>(bundle.nav.size())) return info;
+  const NavRecord& nav = bundle.nav[nav_index];
+  info.kind = PickKind::kKeyframe;
+  info.id = QString::number(nav.keyframe);
+  info.title = QStringLiteral("Keyframe %1").arg(nav.keyframe);
+  info.rows.append({QStringLiteral("Time"), QStringLiteral("%1 s").arg(nav.t, 0, 'f', 2)});
+  info.rows.append({QStringLiteral("Position (initial)"), Vec3(nav.x_gv.head<3>())});
+  info.rows.append({QStringLiteral("Roll, pitch, yaw"),
+                    Degrees(nav.x_gv[3]) + ", " + Degrees(nav.x_gv[4]) + ", " + Degrees(nav.x_gv[5])});
+  info.rows.append({QStringLiteral("Servo angle"), Degrees(nav.servo)});
+  info.rows.append({QStringLiteral("Depth (measured)"), Metres(nav.depth)});
+  for (std::size_t i = 0; i < overlays.true_nav_index.size(); ++i) {
+    if (overlays.true_nav_index[i] != nav_index) continue;
+    const Eigen::Vector3d& truth = overlays.true_trajectory[i];
+    info.rows.append({QStringLiteral("Position (truth)"), Vec3(truth)});
+    info.rows.append({QStringLiteral("Navigation error"), Metres((truth - nav.x_gv.head<3>()).norm())});
+    break;
+  }
+  for (const DvlRecord& d : bundle.dvl) {
+    if (d.keyframe != nav.keyframe) continue;
+    QStringList ranges;
+    for (double r : d.range) ranges << (DvlRecord::HasReturn(r) ? QString::number(r, 'f', 3) : QStringLiteral("—"));
+    info.rows.append({QStringLiteral("DVL ranges (m)"), ranges.join(QStringLiteral(", "))});
+    break;
+  }
+  int features = 0;
+  for (const FeatureObservation& f : bundle.features) features += f.keyframe == nav.keyframe;
+  info.rows.append({QStringLiteral("Features observed"), QString::number(features)});
+  return info;
+}
+
+PickInfo DescribeObject(const SurveyBundle& bundle, const SurveyOverlays& overlays, int index, const Pose& x_gM) {
+  PickInfo info;
+  if (!bundle.truth || index < 0 || index >= static_cast<int>(bundle.truth->objects.size())) return info;
+  const TrueObject& o = bundle.truth->objects[index];
+  info.kind = PickKind::kObject;
+  info.id = QString::fromStdString(o.id);
+  info.title = QStringLiteral("Object %1").arg(info.id);
+  info.rows.append({QStringLiteral("Kind"), QString::fromLatin1(ObjectKindName(o.kind))});
+  if (o.kind == ObjectKind::kBox) {
+    info.rows.append({QStringLiteral("Size"), Vec3(o.size)});
+  } else {
+    info.rows.append({QStringLiteral("Radius"), Metres(o.radius)});
+    info.rows.append({QStringLiteral("Height"), Metres(o.height)});
+  }
+  info.rows.append({QStringLiteral("Centre (model M)"), Vec3(o.center)});
+  info.rows.append({QStringLiteral("Centre (g, as placed)"), Vec3(x_gM * o.center)});
+  int landmarks = 0;
+  for (const LandmarkMarker& l : overlays.landmarks) landmarks += l.object == o.id;
+  info.rows.append({QStringLiteral("Landmarks on it"), QString::number(landmarks)});
+  return info;
+}
+
+}  // namespace hull::ui

@@ -1,0 +1,61 @@
+// What the 3-D scene shows and how, as plain values (no VTK): shared by the
+// scene view, the layers panel and the project file.
+#pragma once
+
+#include <QString>
+#include <array>
+#include <map>
+#include <optional>
+#include <vector>
+
+namespace hull::ui {
+
+// One actor (or group of actors) of the 3-D scene each.
+enum class SceneLayer {
+  kHull,            // the CAD mesh, placed by x_gM
+  kTrajectory,      // vehicle positions of the initial navigation (nav.csv)
+  kTrueTrajectory,  // the true trajectory (truth/poses.csv)
+  kDvlHits,         // DVL returns from the initial poses
+  kLandmarks,       // landmarks (truth or landmarks.csv)
+  kTruthObjects,    // outlines of the true foreign objects (truth/objects.json)
+  kFrusta,          // camera frusta of every Nth keyframe
+};
+
+const std::vector<SceneLayer>& AllSceneLayers();
+QString LayerKey(SceneLayer layer);    // stable name for files: "hull", "dvl_hits", ...
+QString LayerLabel(SceneLayer layer);  // for menus and panels
+std::optional<SceneLayer> LayerFromKey(const QString& key);
+
+enum class LandmarkColouring {
+  kLabel,      // on the hull green, on a foreign object red
+  kDeviation,  // signed distance to the CAD surface, with a colour legend
+};
+QString ColouringKey(LandmarkColouring c);
+std::optional<LandmarkColouring> ColouringFromKey(const QString& key);
+
+struct SceneOptions {
+  std::map<SceneLayer, bool> visible = DefaultVisibility();
+  bool hull_edges = false;
+  LandmarkColouring colouring = LandmarkColouring::kLabel;
+  // Colour-legend range (m); auto_range uses the data's own range.
+  bool auto_range = true;
+  double range_min = -0.05, range_max = 0.15;
+  int frustum_stride = 10;  // a frustum at every Nth keyframe
+
+  bool IsVisible(SceneLayer layer) const;
+  static std::map<SceneLayer, bool> DefaultVisibility();  // all on except the frusta
+  bool operator==(const SceneOptions& o) const;
+  bool operator!=(const SceneOptions& o) const { return !(*this == o); }
+};
+
+// A VTK camera as values: position, focal point and view-up in g (metres),
+// vertical view angle in degrees.
+struct CameraState {
+  std::array<double, 3> position{{0, 0, 0}};
+  std::array<double, 3> focal_point{{0, 0, 0}};
+  std::array<double, 3> view_up{{0, 0, -1}};
+  double view_angle = 30.0;
+  bool operator==(const CameraState& o) const;
+};
+
+}  // namespace hull::ui
