@@ -1,0 +1,156 @@
+#include "ui/scene_polydata_impl.h"
+
+#include <vtkCellArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
+
+namespace hull::ui {
+
+namespace {
+
+vtkSmartPointer<vtkPoints> MakePoints(const std::vector<Eigen::Vector3d>& points) {
+  auto out = vtkSmartPointer<vtkPoints>::New();
+  out->SetDataTypeToDouble();
+  out->SetNumberOfPoints(static_cast<vtkIdType>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) out->SetPoint(static_cast<vtkIdType>(i), points[i].data());
+  return out;
+}
+
+vtkSmartPointer<vtkCellArray> Vertices(vtkIdType n) {
+  auto verts = vtkSmartPointer<vtkCellArray>::New();
+  verts->AllocateExact(n, n);
+  for (vtkIdType i = 0; i < n; ++i) verts->InsertNextCell(1, &i);
+  return verts;
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> MeshPolyData(const TriangleMesh& mesh) {
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(mesh.vertices));
+  vtkNew<vtkCellArray> triangles;
+  triangles->AllocateExact(static_cast<vtkIdType>(mesh.faces.size()), static_cast<vtkIdType>(3 * mesh.faces.size()));
+  for (const Face& f : mesh.faces) {
+    const vtkIdType ids[3] = {f[0], f[1], f[2]};
+    triangles->InsertNextCell(3, ids);
+  }
+  poly->SetPolys(triangles);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> PolylinePolyData(const std::vector<Eigen::Vector3d>& points) {
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(points));
+  vtkNew<vtkCellArray> lines;
+  if (points.size() >= 2) {
+    lines->InsertNextCell(static_cast<vtkIdType>(points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i) lines->InsertCellPoint(static_cast<vtkIdType>(i));
+  }
+  poly->SetLines(lines);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> PointCloudPolyData(const std::vector<Eigen::Vector3d>& points) {
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(points));
+  poly->SetVerts(Vertices(static_cast<vtkIdType>(points.size())));
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> LandmarksPolyData(const std::vector<LandmarkMarker>& landmarks) {
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(landmarks.size());
+  for (const LandmarkMarker& l : landmarks) positions.push_back(l.position);
+  auto poly = PointCloudPolyData(positions);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("label_rgb");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
+  vtkNew<vtkDoubleArray> deviation;
+  deviation->SetName("deviation");
+  deviation->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const LandmarkMarker& l = landmarks[i];
+    const unsigned char green[3] = {40, 200, 60}, red[3] = {230, 40, 40}, grey[3] = {200, 200, 200};
+    const unsigned char* c = !l.has_truth ? grey : (l.foreign() ? red : green);
+    rgb->SetTypedTuple(static_cast<vtkIdType>(i), c);
+    deviation->SetValue(static_cast<vtkIdType>(i), l.deviation);
+  }
+  poly->GetPointData()->AddArray(rgb);
+  poly->GetPointData()->AddArray(deviation);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> OutlinesPolyData(const std::vector<ObjectOutline>& outlines) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> owner;
+  vtkNew<vtkCellArray> lines;
+  for (std::size_t k = 0; k < outlines.size(); ++k) {
+    const ObjectOutline& o = outlines[k];
+    for (const auto& loop : o.loops) {
+      const vtkIdType first = static_cast<vtkIdType>(points.size());
+      lines->InsertNextCell(static_cast<vtkIdType>(loop.size() + 1));
+      for (std::size_t i = 0; i < loop.size(); ++i) {
+        lines->InsertCellPoint(static_cast<vtkIdType>(points.size()));
+        points.push_back(loop[i]);
+        owner.push_back(static_cast<int>(k));
+      }
+      lines->InsertCellPoint(first);
+    }
+    for (const auto& segment : o.segments) {
+      const vtkIdType ids[2] = {static_cast<vtkIdType>(points.size()), static_cast<vtkIdType>(points.size() + 1)};
+      lines->InsertNextCell(2, ids);
+      points.push_back(segment[0]);
+      points.push_back(segment[1]);
+      owner.push_back(static_cast<int>(k));
+      owner.push_back(static_cast<int>(k));
+    }
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(points));
+  poly->SetLines(lines);
+  vtkNew<vtkIntArray> index;
+  index->SetName("object_index");
+  index->SetNumberOfTuples(static_cast<vtkIdType>(owner.size()));
+  for (std::size_t i = 0; i < owner.size(); ++i) index->SetValue(static_cast<vtkIdType>(i), owner[i]);
+  poly->GetPointData()->AddArray(index);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> FrustaPolyData(const std::vector<Frustum>& frusta) {
+  std::vector<Eigen::Vector3d> points;
+  vtkNew<vtkCellArray> lines;
+  for (const Frustum& f : frusta) {
+    const vtkIdType apex = static_cast<vtkIdType>(points.size());
+    points.push_back(f.apex);
+    for (const auto& c : f.corners) points.push_back(c);
+    for (vtkIdType k = 0; k < 4; ++k) {
+      const vtkIdType edge[2] = {apex, apex + 1 + k};
+      lines->InsertNextCell(2, edge);
+    }
+    const vtkIdType rect[5] = {apex + 1, apex + 2, apex + 3, apex + 4, apex + 1};
+    lines->InsertNextCell(5, rect);
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(points));
+  poly->SetLines(lines);
+  return poly;
+}
+
+vtkSmartPointer<vtkMatrix4x4> PoseMatrix(const Pose& pose) {
+  const Eigen::Matrix4d T = pose.Matrix();
+  auto m = vtkSmartPointer<vtkMatrix4x4>::New();
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) m->SetElement(r, c, T(r, c));
+  }
+  return m;
+}
+
+}  // namespace hull::ui

@@ -1,0 +1,143 @@
+#include "ui/scene_view.h"
+
+#include <QVTKOpenGLNativeWidget.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkInteractorStyleTrackballCamera.h>
+#include <vtkNew.h>
+#include <vtkRenderWindowInteractor.h>
+#include <QEvent>
+#include <QMouseEvent>
+#include <QTimer>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+#include "ui/scene_view_impl.h"
+
+namespace hull::ui {
+
+SceneView::SceneView(QWidget* parent) : QWidget(parent), impl_(std::make_unique<SceneViewImpl>()) {
+  setObjectName(QStringLiteral("sceneView"));
+  qRegisterMetaType<PickInfo>("hull::ui::PickInfo");
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  vtk_widget_ = new QVTKOpenGLNativeWidget(this);
+  vtk_widget_->setRenderWindow(impl_->window());
+  // One device pixel per widget pixel keeps screenshots and picking simple
+  // and identical across displays.
+  vtk_widget_->setEnableHiDPI(false);
+  vtkNew<vtkInteractorStyleTrackballCamera> style;
+  vtk_widget_->interactor()->SetInteractorStyle(style);
+  vtk_widget_->installEventFilter(this);
+  layout->addWidget(vtk_widget_);
+  setMinimumSize(320, 240);
+}
+
+SceneView::~SceneView() = default;
+
+void SceneView::ScheduleRender() {
+  // QVTKOpenGLNativeWidget's paintGL only shows VTK's last frame: a change
+  // of the scene needs a vtkRenderWindow::Render(). Coalesced per event loop turn.
+  if (render_pending_) return;
+  render_pending_ = true;
+  QTimer::singleShot(0, this, [this] {
+    render_pending_ = false;
+    if (vtk_widget_->isVisible()) impl_->Render();
+  });
+}
+
+QSurfaceFormat SceneView::SurfaceFormat() { return QVTKOpenGLNativeWidget::defaultFormat(); }
+
+void SceneView::SetMesh(std::shared_ptr<const TriangleMesh> mesh) {
+  impl_->SetMesh(std::move(mesh));
+  ScheduleRender();
+}
+
+void SceneView::SetModelPose(const Pose& x_gM) {
+  impl_->SetModelPose(x_gM);
+  ScheduleRender();
+}
+
+void SceneView::SetSurvey(std::shared_ptr<const SurveyBundle> bundle, std::shared_ptr<const SurveyOverlays> overlays) {
+  impl_->SetSurvey(std::move(bundle), std::move(overlays));
+  ScheduleRender();
+}
+
+void SceneView::SetOptions(const SceneOptions& options) {
+  impl_->SetOptions(options);
+  ScheduleRender();
+}
+
+const SceneOptions& SceneView::options() const { return impl_->options(); }
+
+void SceneView::ResetCamera() {
+  impl_->ResetCamera();
+  ScheduleRender();
+}
+
+CameraState SceneView::Camera() const { return impl_->Camera(); }
+
+void SceneView::SetCamera(const CameraState& camera) {
+  impl_->SetCamera(camera);
+  ScheduleRender();
+}
+
+QImage SceneView::Grab() {
+  if (!vtk_widget_->isVisible()) return {};
+  vtk_widget_->makeCurrent();
+  QImage image = impl_->Grab();
+  vtk_widget_->doneCurrent();
+  return image;
+}
+
+SceneView::LayerStats SceneView::Stats(SceneLayer layer) const {
+  LayerStats s;
+  s.present = impl_->HasLayerData(layer);
+  s.visible = s.present && impl_->options().IsVisible(layer);
+  s.points = impl_->LayerPoints(layer);
+  s.cells = impl_->LayerCells(layer);
+  return s;
+}
+
+bool SceneView::LegendVisible() const { return impl_->LegendVisible(); }
+
+std::pair<double, double> SceneView::LegendRange() const { return impl_->LegendRange(); }
+
+PickInfo SceneView::PickAt(const QPoint& position) {
+  const QPoint local = vtk_widget_->mapFrom(this, position);
+  const double x = local.x();
+  const double y = vtk_widget_->height() - 1 - local.y();
+  PickInfo info = impl_->Pick(x, y);
+  ScheduleRender();
+  emit picked(info);
+  return info;
+}
+
+std::optional<QPoint> SceneView::WidgetPosition(const Eigen::Vector3d& p_g) const {
+  const auto display = impl_->ToDisplay(p_g);
+  if (!display) return std::nullopt;
+  const QPoint local(static_cast<int>(std::lround(display->first)),
+                     static_cast<int>(std::lround(vtk_widget_->height() - 1 - display->second)));
+  return vtk_widget_->mapTo(this, local);
+}
+
+bool SceneView::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == vtk_widget_) {
+    // A click (press and release within a few pixels) picks; a drag turns
+    // the camera as usual (the interactor sees every event).
+    if (event->type() == QEvent::MouseButtonPress) {
+      auto* e = static_cast<QMouseEvent*>(event);
+      press_valid_ = e->button() == Qt::LeftButton;
+      press_position_ = e->pos();
+    } else if (event->type() == QEvent::MouseButtonRelease) {
+      auto* e = static_cast<QMouseEvent*>(event);
+      if (press_valid_ && e->button() == Qt::LeftButton && (e->pos() - press_position_).manhattanLength() <= 3) {
+        PickAt(vtk_widget_->mapTo(this, e->pos()));
+      }
+      press_valid_ = false;
+    }
+  }
+  return QWidget::eventFilter(watched, event);
+}
+
+}  // namespace hull::ui

@@ -1,0 +1,430 @@
+#include "ui/scene_view_impl.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkDataArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkImageData.h>
+#include <vtkLookupTable.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPointPicker.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "ui/scene_polydata_impl.h"
+
+namespace hull::ui {
+
+namespace {
+
+// Colours (RGB in [0, 1]).
+constexpr double kHullGrey[3] = {0.56, 0.58, 0.61};
+constexpr double kHullEdge[3] = {0.36, 0.37, 0.40};
+constexpr double kTrajectoryOrange[3] = {1.0, 0.62, 0.12};
+constexpr double kTruthMagenta[3] = {0.93, 0.35, 0.93};
+constexpr double kDvlCyan[3] = {0.2, 0.85, 0.95};
+constexpr double kObjectYellow[3] = {1.0, 0.92, 0.2};
+constexpr double kFrustumWhite[3] = {0.85, 0.88, 0.9};
+constexpr double kBackgroundBottom[3] = {0.02, 0.07, 0.13};
+constexpr double kBackgroundTop[3] = {0.10, 0.25, 0.38};
+
+vtkPolyDataMapper* MapperOf(vtkActor* actor) { return vtkPolyDataMapper::SafeDownCast(actor->GetMapper()); }
+
+vtkPolyData* DataOf(vtkActor* actor) {
+  vtkPolyDataMapper* mapper = MapperOf(actor);
+  return mapper ? vtkPolyData::SafeDownCast(mapper->GetInput()) : nullptr;
+}
+
+void SetData(vtkActor* actor, vtkPolyData* data) { MapperOf(actor)->SetInputData(data); }
+
+}  // namespace
+
+SceneViewImpl::SceneViewImpl() {
+  // Points and lines that lie on a surface are drawn in front of it (VTK's
+  // polygon offset; a process-wide mapper setting, which every view wants).
+  vtkMapper::SetResolveCoincidentTopologyToPolygonOffset();
+  window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  renderer_->GradientBackgroundOn();
+  renderer_->SetBackground(kBackgroundBottom[0], kBackgroundBottom[1], kBackgroundBottom[2]);
+  renderer_->SetBackground2(kBackgroundTop[0], kBackgroundTop[1], kBackgroundTop[2]);
+  window_->AddRenderer(renderer_);
+
+  for (SceneLayer layer : AllSceneLayers()) {
+    vtkActor* actor = AddActor();
+    actors_[layer] = actor;
+    vtkProperty* p = actor->GetProperty();
+    switch (layer) {
+      case SceneLayer::kHull:
+        p->SetColor(kHullGrey[0], kHullGrey[1], kHullGrey[2]);
+        p->SetEdgeColor(kHullEdge[0], kHullEdge[1], kHullEdge[2]);
+        p->SetInterpolationToFlat();
+        p->SetAmbient(0.25);
+        p->SetDiffuse(0.75);
+        p->SetSpecular(0.0);
+        actor->PickableOff();
+        // Landmarks, DVL hits and outlines lie on the surface: push the
+        // hull's polygons back in depth so that they stay visible.
+        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 8.0);
+        break;
+      case SceneLayer::kTrajectory:
+        p->SetColor(kTrajectoryOrange[0], kTrajectoryOrange[1], kTrajectoryOrange[2]);
+        p->SetLineWidth(2.0);
+        p->LightingOff();
+        break;
+      case SceneLayer::kTrueTrajectory:
+        p->SetColor(kTruthMagenta[0], kTruthMagenta[1], kTruthMagenta[2]);
+        p->SetLineWidth(2.0);
+        p->LightingOff();
+        break;
+      case SceneLayer::kDvlHits:
+        p->SetColor(kDvlCyan[0], kDvlCyan[1], kDvlCyan[2]);
+        p->SetPointSize(3.0);
+        p->LightingOff();
+        actor->PickableOff();
+        break;
+      case SceneLayer::kLandmarks:
+        p->SetPointSize(4.0);
+        p->LightingOff();
+        break;
+      case SceneLayer::kTruthObjects:
+        p->SetColor(kObjectYellow[0], kObjectYellow[1], kObjectYellow[2]);
+        p->SetLineWidth(2.0);
+        p->LightingOff();
+        break;
+      case SceneLayer::kFrusta:
+        p->SetColor(kFrustumWhite[0], kFrustumWhite[1], kFrustumWhite[2]);
+        p->SetOpacity(0.7);
+        p->LightingOff();
+        actor->PickableOff();
+        break;
+    }
+  }
+  selection_ = AddActor();
+  selection_->GetProperty()->SetColor(1.0, 1.0, 1.0);
+  selection_->GetProperty()->SetPointSize(11.0);
+  selection_->GetProperty()->LightingOff();
+  selection_->PickableOff();
+  selection_->VisibilityOff();
+
+  // Moreland's cool-to-warm diverging map, sampled into a lookup table that
+  // the landmark mapper and the legend share.
+  vtkNew<vtkColorTransferFunction> ctf;
+  ctf->SetColorSpaceToDiverging();
+  ctf->AddRGBPoint(0.0, 0.230, 0.299, 0.754);
+  ctf->AddRGBPoint(0.5, 0.865, 0.865, 0.865);
+  ctf->AddRGBPoint(1.0, 0.706, 0.016, 0.150);
+  deviation_lut_ = vtkSmartPointer<vtkLookupTable>::New();
+  deviation_lut_->SetNumberOfTableValues(256);
+  for (int i = 0; i < 256; ++i) {
+    double rgb[3];
+    ctf->GetColor(i / 255.0, rgb);
+    deviation_lut_->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
+  }
+  deviation_lut_->Build();
+
+  legend_ = vtkSmartPointer<vtkScalarBarActor>::New();
+  legend_->SetLookupTable(deviation_lut_);
+  legend_->SetTitle("Deviation (m)");
+  legend_->SetNumberOfLabels(5);
+  legend_->SetLabelFormat("%+.3f");
+  legend_->SetMaximumWidthInPixels(110);
+  legend_->GetPositionCoordinate()->SetValue(0.85, 0.06);
+  legend_->SetWidth(0.13);
+  legend_->SetHeight(0.86);
+  legend_->UnconstrainedFontSizeOn();
+  legend_->SetVerticalTitleSeparation(6);
+  legend_->GetTitleTextProperty()->SetFontSize(14);
+  legend_->GetLabelTextProperty()->SetFontSize(12);
+  legend_->GetTitleTextProperty()->ItalicOff();
+  legend_->GetTitleTextProperty()->ShadowOff();
+  legend_->GetLabelTextProperty()->ItalicOff();
+  legend_->GetLabelTextProperty()->ShadowOff();
+  legend_->VisibilityOff();
+  renderer_->AddViewProp(legend_);
+
+  picker_ = vtkSmartPointer<vtkPointPicker>::New();
+  picker_->SetTolerance(0.01);
+  picker_->PickFromListOn();
+
+  UpdateVisibility();
+}
+
+SceneViewImpl::~SceneViewImpl() = default;
+
+vtkActor* SceneViewImpl::AddActor() {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(vtkSmartPointer<vtkPolyData>::New());
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer_->AddActor(actor);
+  return actor.GetPointer();  // the renderer holds it
+}
+
+void SceneViewImpl::SetMesh(std::shared_ptr<const TriangleMesh> mesh) {
+  mesh_ = std::move(mesh);
+  SetData(actors_[SceneLayer::kHull], mesh_ ? MeshPolyData(*mesh_) : vtkSmartPointer<vtkPolyData>::New());
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetModelPose(const Pose& x_gM) {
+  x_gM_ = x_gM;
+  actors_[SceneLayer::kHull]->SetUserMatrix(PoseMatrix(x_gM));
+  actors_[SceneLayer::kTruthObjects]->SetUserMatrix(PoseMatrix(x_gM));
+}
+
+void SceneViewImpl::SetSurvey(std::shared_ptr<const SurveyBundle> bundle,
+                              std::shared_ptr<const SurveyOverlays> overlays) {
+  if (!bundle || !overlays) {
+    bundle.reset();
+    overlays.reset();
+  }
+  bundle_ = std::move(bundle);
+  overlays_ = std::move(overlays);
+  static const SurveyOverlays kEmpty;
+  const SurveyOverlays& o = overlays_ ? *overlays_ : kEmpty;
+  SetData(actors_[SceneLayer::kTrajectory], PolylinePolyData(o.trajectory));
+  SetData(actors_[SceneLayer::kTrueTrajectory], PolylinePolyData(o.true_trajectory));
+  std::vector<Eigen::Vector3d> hits;
+  hits.reserve(o.dvl_hits.size());
+  for (const DvlHit& h : o.dvl_hits) hits.push_back(h.point);
+  SetData(actors_[SceneLayer::kDvlHits], PointCloudPolyData(hits));
+  SetData(actors_[SceneLayer::kLandmarks], LandmarksPolyData(o.landmarks));
+  SetData(actors_[SceneLayer::kTruthObjects], OutlinesPolyData(o.objects));
+  frusta_stride_built_ = 0;
+  selection_->VisibilityOff();
+  UpdateLandmarkColours();
+  UpdateFrusta();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetOptions(const SceneOptions& options) {
+  options_ = options;
+  vtkProperty* hull = actors_[SceneLayer::kHull]->GetProperty();
+  hull->SetEdgeVisibility(options_.hull_edges);
+  UpdateLandmarkColours();
+  UpdateFrusta();
+  UpdateVisibility();
+}
+
+bool SceneViewImpl::HasLayerData(SceneLayer layer) const {
+  vtkPolyData* data = DataOf(actors_.at(layer));
+  return data && data->GetNumberOfPoints() > 0;
+}
+
+long long SceneViewImpl::LayerPoints(SceneLayer layer) const {
+  vtkPolyData* data = DataOf(actors_.at(layer));
+  return data ? data->GetNumberOfPoints() : 0;
+}
+
+long long SceneViewImpl::LayerCells(SceneLayer layer) const {
+  vtkPolyData* data = DataOf(actors_.at(layer));
+  return data ? data->GetNumberOfCells() : 0;
+}
+
+void SceneViewImpl::UpdateVisibility() {
+  for (auto& [layer, actor] : actors_) actor->SetVisibility(options_.IsVisible(layer) && HasLayerData(layer));
+  legend_->SetVisibility(LegendVisible());
+}
+
+bool SceneViewImpl::LegendVisible() const {
+  return options_.colouring == LandmarkColouring::kDeviation && options_.IsVisible(SceneLayer::kLandmarks) &&
+         overlays_ && overlays_->landmark_source == LandmarkSource::kTruth && !overlays_->landmarks.empty();
+}
+
+std::pair<double, double> SceneViewImpl::EffectiveRange() const {
+  if (!options_.auto_range || !overlays_) return {options_.range_min, options_.range_max};
+  // Symmetric about zero so that the neutral colour means "on the surface".
+  const double m = std::max({std::abs(overlays_->min_deviation), std::abs(overlays_->max_deviation), 1e-3});
+  return {-m, m};
+}
+
+std::pair<double, double> SceneViewImpl::LegendRange() const { return EffectiveRange(); }
+
+void SceneViewImpl::UpdateLandmarkColours() {
+  vtkPolyDataMapper* mapper = MapperOf(actors_[SceneLayer::kLandmarks]);
+  mapper->ScalarVisibilityOn();
+  mapper->SetScalarModeToUsePointFieldData();
+  if (options_.colouring == LandmarkColouring::kLabel) {
+    mapper->SelectColorArray("label_rgb");
+    mapper->SetColorModeToDirectScalars();
+  } else {
+    const auto [lo, hi] = EffectiveRange();
+    deviation_lut_->SetTableRange(lo, std::max(hi, lo + 1e-6));
+    mapper->SelectColorArray("deviation");
+    mapper->SetColorModeToMapScalars();
+    mapper->SetLookupTable(deviation_lut_);
+    mapper->UseLookupTableScalarRangeOn();
+  }
+  mapper->Modified();
+}
+
+void SceneViewImpl::UpdateFrusta() {
+  vtkActor* actor = actors_[SceneLayer::kFrusta];
+  const bool wanted = bundle_ && options_.IsVisible(SceneLayer::kFrusta);
+  if (!wanted) {
+    if (frusta_stride_built_ != 0) SetData(actor, vtkSmartPointer<vtkPolyData>::New());
+    frusta_stride_built_ = 0;
+    return;
+  }
+  const int stride = std::max(1, options_.frustum_stride);
+  if (stride == frusta_stride_built_) return;
+  SetData(actor, FrustaPolyData(ComputeFrusta(*bundle_, stride)));
+  frusta_stride_built_ = stride;
+}
+
+void SceneViewImpl::ResetCamera() {
+  Eigen::AlignedBox3d box;
+  if (overlays_ && !overlays_->bounds.isEmpty()) {
+    box = overlays_->bounds;
+  } else if (mesh_ && !mesh_->empty()) {
+    for (const auto& v : mesh_->vertices) box.extend(x_gM_ * v);
+  } else {
+    box.extend(Eigen::Vector3d(-1, -1, -1));
+    box.extend(Eigen::Vector3d(1, 1, 1));
+  }
+  // The hull's axes in g. Seen from below (g is z down, so "below" is +z),
+  // bow to the right and starboard up on the screen, tilted a little so
+  // the view has depth.
+  Eigen::Vector3d forward = x_gM_.Rotate(Eigen::Vector3d::UnitX());
+  Eigen::Vector3d up = x_gM_.Rotate(Eigen::Vector3d::UnitZ());
+  if (bundle_ && bundle_->manifest.model_axes) {
+    forward = x_gM_.Rotate(bundle_->manifest.model_axes->forward.normalized());
+    up = x_gM_.Rotate(bundle_->manifest.model_axes->up.normalized());
+  }
+  const Eigen::Vector3d starboard = forward.cross(up).normalized();
+  const double tilt = 0.35;  // rad
+  const Eigen::Vector3d view_from = (-up * std::cos(tilt) - starboard * std::sin(tilt)).normalized();
+  const Eigen::Vector3d centre = box.center();
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  camera->SetFocalPoint(centre.data());
+  const Eigen::Vector3d position = centre + view_from;
+  camera->SetPosition(position.data());
+  camera->SetViewUp(starboard.data());
+  camera->SetViewAngle(30.0);
+  double bounds[6] = {box.min().x(), box.max().x(), box.min().y(), box.max().y(), box.min().z(), box.max().z()};
+  renderer_->ResetCamera(bounds);
+  camera->Dolly(1.3);
+  renderer_->ResetCameraClippingRange();
+}
+
+CameraState SceneViewImpl::Camera() const {
+  CameraState state;
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  camera->GetPosition(state.position.data());
+  camera->GetFocalPoint(state.focal_point.data());
+  camera->GetViewUp(state.view_up.data());
+  state.view_angle = camera->GetViewAngle();
+  return state;
+}
+
+void SceneViewImpl::SetCamera(const CameraState& state) {
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  camera->SetPosition(state.position.data());
+  camera->SetFocalPoint(state.focal_point.data());
+  camera->SetViewUp(state.view_up.data());
+  camera->SetViewAngle(state.view_angle);
+  camera->OrthogonalizeViewUp();
+  renderer_->ResetCameraClippingRange();
+}
+
+void SceneViewImpl::Render() {
+  renderer_->ResetCameraClippingRange();
+  window_->Render();
+}
+
+QImage SceneViewImpl::Grab() {
+  if (!window_->GetReadyForRendering()) return {};
+  Render();
+  vtkNew<vtkWindowToImageFilter> filter;
+  filter->SetInput(window_);
+  filter->SetInputBufferTypeToRGB();
+  filter->ReadFrontBufferOff();
+  filter->ShouldRerenderOn();
+  filter->Update();
+  vtkImageData* image = filter->GetOutput();
+  int dims[3];
+  image->GetDimensions(dims);
+  if (dims[0] <= 0 || dims[1] <= 0) return {};
+  auto* pixels = static_cast<const unsigned char*>(image->GetScalarPointer());
+  QImage out(dims[0], dims[1], QImage::Format_RGB888);
+  // VTK's rows run bottom-up.
+  for (int y = 0; y < dims[1]; ++y) {
+    std::memcpy(out.scanLine(dims[1] - 1 - y), pixels + static_cast<std::size_t>(y) * dims[0] * 3,
+                static_cast<std::size_t>(dims[0]) * 3);
+  }
+  return out;
+}
+
+PickInfo SceneViewImpl::Pick(double x, double y) {
+  PickInfo info;
+  selection_->VisibilityOff();
+  if (!bundle_ || !overlays_) return info;
+  // Landmarks first, then keyframes, then objects: the nearest point to the
+  // ray of the first layer that has one within the tolerance.
+  vtkActor* actor = nullptr;
+  vtkIdType id = -1;
+  for (SceneLayer layer :
+       {SceneLayer::kLandmarks, SceneLayer::kTrajectory, SceneLayer::kTrueTrajectory, SceneLayer::kTruthObjects}) {
+    vtkActor* candidate = actors_[layer];
+    if (!candidate->GetVisibility()) continue;
+    picker_->InitializePickList();
+    picker_->AddPickList(candidate);
+    if (picker_->Pick(x, y, 0.0, renderer_) && picker_->GetActor() == candidate && picker_->GetPointId() >= 0) {
+      actor = candidate;
+      id = picker_->GetPointId();
+      break;
+    }
+  }
+  if (!actor) return info;
+  const int index = static_cast<int>(id);
+  if (actor == actors_[SceneLayer::kLandmarks]) {
+    info = DescribeLandmark(*overlays_, index);
+    if (info.kind != PickKind::kNone) ShowSelection(overlays_->landmarks[index].position);
+  } else if (actor == actors_[SceneLayer::kTrajectory]) {
+    info = DescribeKeyframe(*bundle_, *overlays_, index);
+    if (info.kind != PickKind::kNone) ShowSelection(overlays_->trajectory[index]);
+  } else if (actor == actors_[SceneLayer::kTrueTrajectory]) {
+    if (index < static_cast<int>(overlays_->true_nav_index.size())) {
+      info = DescribeKeyframe(*bundle_, *overlays_, overlays_->true_nav_index[index]);
+      if (info.kind != PickKind::kNone) ShowSelection(overlays_->true_trajectory[index]);
+    }
+  } else if (actor == actors_[SceneLayer::kTruthObjects]) {
+    vtkDataArray* owner = DataOf(actor)->GetPointData()->GetArray("object_index");
+    const int object = owner ? static_cast<int>(owner->GetTuple1(id)) : -1;
+    info = DescribeObject(*bundle_, *overlays_, object, x_gM_);
+    if (info.kind != PickKind::kNone) ShowSelection(x_gM_ * overlays_->objects[object].center);
+  }
+  return info;
+}
+
+void SceneViewImpl::ShowSelection(const Eigen::Vector3d& p_g) {
+  SetData(selection_, PointCloudPolyData({p_g}));
+  selection_->VisibilityOn();
+}
+
+std::optional<std::pair<double, double>> SceneViewImpl::ToDisplay(const Eigen::Vector3d& p_g) const {
+  int* size = window_->GetSize();
+  if (!size || size[0] <= 0 || size[1] <= 0) return std::nullopt;
+  renderer_->SetWorldPoint(p_g.x(), p_g.y(), p_g.z(), 1.0);
+  renderer_->WorldToDisplay();
+  double d[3];
+  renderer_->GetDisplayPoint(d);
+  return std::make_pair(d[0], d[1]);
+}
+
+}  // namespace hull::ui
