@@ -1,0 +1,342 @@
+// The GUI's logic without windows: sensor frames of the overlays checked
+// against the survey's ground truth, pick details, the demo cache, project
+// files, the command line and the sorting of opened paths.
+#include <QDir>
+#include <QFile>
+#include <QTemporaryDir>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include "base/error.h"
+#include "geometry/mesh_index.h"
+#include "gui_test_support.h"
+#include "ui/command_line.h"
+#include "ui/demo_cache.h"
+#include "ui/document_controller.h"
+#include "ui/pick_details.h"
+#include "ui/project_file.h"
+
+using namespace hull::ui;
+using hull::ui::testing::LoadDemo;
+
+namespace {
+
+double Median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+// Cancels at the first update.
+class CancelAtOnce final : public hull::Progress {
+ public:
+  void Update(double, const std::string&) override { cancelled_ = true; }
+  bool Cancelled() const override { return cancelled_; }
+
+ private:
+  bool cancelled_ = false;
+};
+
+void WriteText(const QString& path, const QByteArray& text) {
+  QFile f(path);
+  QVERIFY(f.open(QIODevice::WriteOnly));
+  f.write(text);
+}
+
+}  // namespace
+
+class UiLogicTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  // --- overlays: the contract's sensor chain, checked against the truth ---
+
+  void dvlHitsFromTruePosesLieOnTheTrueHull() {
+    const auto& demo = LoadDemo();
+    const auto& truth = *demo.bundle->truth;
+    const hull::Pose M_from_g = hull::Pose::FromVector(truth.x_gM).Inverse();
+    const hull::MeshIndex index(*demo.mesh);
+    std::vector<double> distances;
+    for (const DvlHit& hit : ComputeDvlHits(*demo.bundle, PoseSource::kTruth)) {
+      distances.push_back(std::abs(index.SignedDistance(M_from_g * hit.point)));
+    }
+    QVERIFY(distances.size() > 500);
+    // 3 mm range noise; a few beams hit foreign objects (up to ~15 cm high).
+    const double median = Median(distances);
+    QVERIFY2(median < 0.006, qPrintable(QStringLiteral("median |distance| %1 m").arg(median)));
+  }
+
+  void trueLandmarksProjectOntoTheirObservations() {
+    const auto& demo = LoadDemo();
+    hull::SurveyManifest manifest = demo.bundle->manifest;
+    manifest.camera.servo_to_top = demo.bundle->truth->x_s_cT;  // the true extrinsic
+    std::unordered_map<std::int64_t, const hull::TruePose*> poses;
+    for (const auto& p : demo.bundle->truth->poses) poses[p.keyframe] = &p;
+    std::unordered_map<std::int64_t, Eigen::Vector3d> landmarks;
+    for (const auto& l : demo.bundle->truth->landmarks) landmarks[l.landmark] = l.p;
+    std::vector<double> errors;
+    for (const auto& f : demo.bundle->features) {
+      const auto pose = poses.find(f.keyframe);
+      const auto l = landmarks.find(f.landmark);
+      if (pose == poses.end() || l == landmarks.end()) continue;
+      const hull::Pose x_gc = CameraPose(manifest, pose->second->x_gv, pose->second->servo);
+      const Eigen::Vector3d p_c = x_gc.Inverse() * l->second;
+      QVERIFY(p_c.z() > 0);
+      errors.push_back((manifest.camera.top.Project(p_c) - f.top).norm());
+    }
+    QVERIFY(errors.size() > 1000);
+    const double median = Median(errors);
+    QVERIFY2(median < 4.0, qPrintable(QStringLiteral("median reprojection error %1 px").arg(median)));
+  }
+
+  void overlaysHoldTheWholeSurvey() {
+    const auto& demo = LoadDemo();
+    const hull::SurveyBundle& b = *demo.bundle;
+    const SurveyOverlays& o = *demo.overlays;
+    QCOMPARE(o.trajectory.size(), b.nav.size());
+    QCOMPARE(o.true_trajectory.size(), b.truth->poses.size());
+    std::size_t returns = 0;
+    for (const auto& d : b.dvl) {
+      for (double r : d.range) returns += hull::DvlRecord::HasReturn(r);
+    }
+    QCOMPARE(o.dvl_hits.size(), returns);
+    QCOMPARE(o.landmark_source, LandmarkSource::kTruth);
+    QCOMPARE(o.landmarks.size(), b.truth->landmarks.size());
+    QCOMPARE(o.objects.size(), b.truth->objects.size());
+    QVERIFY(o.max_deviation > 0.05);  // the cylinder and the fouling stand off the hull
+    for (const auto& l : o.landmarks) QVERIFY(o.bounds.contains(l.position));
+    int foreign = 0;
+    for (const auto& l : o.landmarks) foreign += l.foreign();
+    QVERIFY(foreign > 0 && foreign < static_cast<int>(o.landmarks.size()));
+  }
+
+  void frustaReachTheHull() {
+    const auto& demo = LoadDemo();
+    const auto frusta = ComputeFrusta(*demo.bundle, 10);
+    QCOMPARE(frusta.size(), (demo.bundle->nav.size() + 9) / 10);
+    const hull::Pose x_gM = PlacementPose(demo.bundle.get(), ModelPlacement::kTruth);
+    const hull::MeshIndex index(*demo.mesh);
+    std::vector<double> distances;
+    for (const auto& f : frusta) {
+      const Eigen::Vector3d centre = 0.25 * (f.corners[0] + f.corners[1] + f.corners[2] + f.corners[3]);
+      distances.push_back(std::abs(index.SignedDistance(x_gM.Inverse() * centre)));
+    }
+    // The base of each frustum lies near the hull (initial poses: within tens of cm).
+    QVERIFY2(Median(distances) < 0.5, qPrintable(QString::number(Median(distances))));
+  }
+
+  void outlinesFollowTheObjects() {
+    hull::TrueObject box;
+    box.id = "box-1";
+    box.kind = hull::ObjectKind::kBox;
+    box.center = Eigen::Vector3d(1, 2, 3);
+    box.normal = -Eigen::Vector3d::UnitZ();
+    box.size = Eigen::Vector3d(0.4, 0.2, 0.1);
+    const ObjectOutline o = OutlineOf(box);
+    QCOMPARE(o.loops.size(), std::size_t(2));
+    QCOMPARE(o.loops[0].size(), std::size_t(4));
+    // Side a along the model x axis, the top 0.1 m out along the normal.
+    QVERIFY(std::abs((o.loops[0][1] - o.loops[0][0]).norm() - 0.4) < 1e-12);
+    QVERIFY(std::abs((o.loops[0][1] - o.loops[0][0]).normalized().dot(Eigen::Vector3d::UnitX())) > 0.999);
+    QVERIFY(std::abs((o.loops[1][0] - box.center).dot(box.normal) - 0.1) < 1e-12);
+  }
+
+  void placementsFromTheBundle() {
+    const auto& demo = LoadDemo();
+    const auto available = AvailablePlacements(demo.bundle.get());
+    QCOMPARE(available.front(), ModelPlacement::kTruth);
+    QVERIFY(std::find(available.begin(), available.end(), ModelPlacement::kGuess) != available.end());
+    QCOMPARE(AvailablePlacements(nullptr), std::vector<ModelPlacement>{ModelPlacement::kIdentity});
+    const hull::Pose guess = PlacementPose(demo.bundle.get(), ModelPlacement::kGuess);
+    const hull::Pose truth = PlacementPose(demo.bundle.get(), ModelPlacement::kTruth);
+    // The simulated guess is off by tens of centimetres.
+    QVERIFY(hull::Pose::DistanceBetween(guess, truth) > 0.05);
+  }
+
+  void pickDetailsDescribeWhatWasPicked() {
+    const auto& demo = LoadDemo();
+    const PickInfo keyframe = DescribeKeyframe(*demo.bundle, *demo.overlays, 5);
+    QCOMPARE(keyframe.kind, PickKind::kKeyframe);
+    QCOMPARE(keyframe.title, QStringLiteral("Keyframe %1").arg(demo.bundle->nav[5].keyframe));
+    QStringList labels;
+    for (const auto& row : keyframe.rows) labels << row.first;
+    QVERIFY(labels.contains(QStringLiteral("DVL ranges (m)")));
+    QVERIFY(labels.contains(QStringLiteral("Position (truth)")));
+    QVERIFY(labels.contains(QStringLiteral("Features observed")));
+    const PickInfo object = DescribeObject(*demo.bundle, *demo.overlays, 0, hull::Pose());
+    QCOMPARE(object.kind, PickKind::kObject);
+    QCOMPARE(object.id, QString::fromStdString(demo.bundle->truth->objects[0].id));
+    QCOMPARE(DescribeLandmark(*demo.overlays, -1).kind, PickKind::kNone);
+  }
+
+  // --- the demo cache ---
+
+  void demoCacheIsAtomicAndReused() {
+    QTemporaryDir root;
+    const std::string cache = QFile::encodeName(root.path()).toStdString();
+    CancelAtOnce cancel;
+    QVERIFY_EXCEPTION_THROWN(PrepareDemo(cache, cancel), hull::Cancelled);
+    QVERIFY(QDir(root.path()).entryList(QDir::AllEntries | QDir::NoDotAndDotDot).isEmpty());
+
+    hull::NullProgress progress;
+    const DemoFiles first = PrepareDemo(cache, progress);
+    QVERIFY(first.simulated);
+    QVERIFY(IsValidDemo(first.directory));
+    QCOMPARE(QDir(root.path()).entryList(QDir::AllEntries | QDir::NoDotAndDotDot),
+             QStringList{QStringLiteral("demo-1")});
+    const DemoFiles second = PrepareDemo(cache, progress);
+    QVERIFY(!second.simulated);
+    QCOMPARE(second.directory, first.directory);
+
+    // A damaged copy is simulated again.
+    WriteText(QFile::decodeName(first.directory.c_str()) + QStringLiteral("/nav.csv"), "keyframe,t\n1,oops\n");
+    QVERIFY(!IsValidDemo(first.directory));
+    QVERIFY(PrepareDemo(cache, progress).simulated);
+    QVERIFY(IsValidDemo(first.directory));
+  }
+
+  // --- project files ---
+
+  void projectRoundTrip() {
+    QTemporaryDir dir;
+    ProjectData p;
+    p.mesh_path = dir.filePath(QStringLiteral("models/hull.ply"));
+    p.bundle_path = dir.filePath(QStringLiteral("surveys/day-1"));
+    p.parameters = DefaultValues(DefaultParameterTable());
+    p.parameters.insert(QStringLiteral("sigma1"), 0.035);
+    p.parameters.insert(QStringLiteral("model"), QStringLiteral("naive"));
+    p.parameters.insert(QStringLiteral("dbscan_min_points"), 7);
+    p.placement = QStringLiteral("guess");
+    p.scene.visible[SceneLayer::kDvlHits] = false;
+    p.scene.visible[SceneLayer::kFrusta] = true;
+    p.scene.hull_edges = true;
+    p.scene.colouring = LandmarkColouring::kDeviation;
+    p.scene.auto_range = false;
+    p.scene.range_min = -0.02;
+    p.scene.range_max = 0.2;
+    p.scene.frustum_stride = 4;
+    p.camera = CameraState{{{1.5, -2, 12.25}}, {{0.5, 0.25, 9}}, {{0, 1, 0}}, 25.0};
+    const QString file = dir.filePath(QStringLiteral("inspection.hiproj"));
+    WriteProject(file, p);
+    const ProjectData q = ReadProject(file, DefaultParameterTable(), CheckDefaultParameters);
+    QCOMPARE(q.mesh_path, p.mesh_path);
+    QCOMPARE(q.bundle_path, p.bundle_path);
+    QCOMPARE(q.parameters, p.parameters);
+    QCOMPARE(q.placement, p.placement);
+    QVERIFY(q.scene == p.scene);
+    QVERIFY(q.camera.has_value());
+    QVERIFY(*q.camera == *p.camera);
+  }
+
+  void projectInputsAreRelativeToTheProject() {
+    QTemporaryDir dir;
+    QDir(dir.path()).mkpath(QStringLiteral("job/data"));
+    ProjectData p;
+    p.mesh_path = dir.filePath(QStringLiteral("job/data/hull.ply"));
+    p.bundle_path = dir.filePath(QStringLiteral("job/data/survey"));
+    p.parameters = DefaultValues(DefaultParameterTable());
+    WriteProject(dir.filePath(QStringLiteral("job/p.hiproj")), p);
+    QFile f(dir.filePath(QStringLiteral("job/p.hiproj")));
+    QVERIFY(f.open(QIODevice::ReadOnly));
+    const QByteArray json = f.readAll();
+    QVERIFY2(json.contains("\"mesh\": \"data/hull.ply\""), json.constData());
+    QVERIFY2(json.contains("\"survey\": \"data/survey\""), json.constData());
+    f.close();
+    // The whole folder moves; the project still finds its inputs.
+    QVERIFY(QDir(dir.path()).rename(QStringLiteral("job"), QStringLiteral("moved")));
+    const ProjectData q =
+        ReadProject(dir.filePath(QStringLiteral("moved/p.hiproj")), DefaultParameterTable(), CheckDefaultParameters);
+    QCOMPARE(q.mesh_path, dir.filePath(QStringLiteral("moved/data/hull.ply")));
+    QCOMPARE(q.bundle_path, dir.filePath(QStringLiteral("moved/data/survey")));
+  }
+
+  void malformedProjectsNameFileLineAndColumn() {
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("bad.hiproj"));
+    auto error_of = [&](const QByteArray& text) -> hull::SourceLocation {
+      WriteText(file, text);
+      try {
+        ReadProject(file, DefaultParameterTable(), CheckDefaultParameters);
+      } catch (const hull::InputError& e) {
+        return e.where();
+      }
+      return {};
+    };
+    hull::SourceLocation w = error_of("{\n  \"format\": \"hullinspect-project\",\n  \"version\": 1,\n  oops\n}\n");
+    QCOMPARE(QString::fromStdString(w.file), file);
+    QCOMPARE(w.line, 4);
+    QVERIFY(w.column > 0);
+
+    w = error_of(
+        "{\n  \"format\": \"hullinspect-project\",\n  \"version\": 1,\n  \"parameters\": {\n    \"sigma1\": \"big\"\n  "
+        "}\n}\n");
+    QCOMPARE(w.field, std::string("parameters.sigma1"));
+    QCOMPARE(w.line, 5);
+
+    w = error_of("{\"format\": \"hullinspect-project\", \"version\": 1, \"parameters\": {\"sigma1\": 3.0}}");
+    QCOMPARE(w.field, std::string("parameters.sigma1"));  // must stay below sigma0
+
+    w = error_of("{\"format\": \"hullinspect-project\", \"version\": 2}");
+    QCOMPARE(w.field, std::string("version"));
+
+    w = error_of("{\"format\": \"something-else\", \"version\": 1}");
+    QCOMPARE(w.field, std::string("format"));
+
+    w = error_of(
+        "{\"format\": \"hullinspect-project\", \"version\": 1, \"view\": {\"camera\": {\"position\": [1, 2]}}}");
+    QCOMPARE(w.field, std::string("view.camera.position"));
+  }
+
+  void savingReplacesTheFileWhole() {
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("p.hiproj"));
+    WriteText(file, QByteArray(100000, 'x'));
+    ProjectData p;
+    p.parameters = DefaultValues(DefaultParameterTable());
+    WriteProject(file, p);
+    const ProjectData q = ReadProject(file, DefaultParameterTable(), CheckDefaultParameters);
+    QCOMPARE(q.parameters, p.parameters);
+    QVERIFY_EXCEPTION_THROWN(WriteProject(dir.filePath(QStringLiteral("no/such/folder/p.hiproj")), p),
+                             std::runtime_error);
+  }
+
+  // --- command line and opened paths ---
+
+  void commandLine() {
+    LaunchOptions o = ParseCommandLine({QStringLiteral("--demo")});
+    QVERIFY(o.demo && o.error.isEmpty() && o.paths.isEmpty());
+    o = ParseCommandLine({QStringLiteral("hull.ply"), QStringLiteral("survey"), QStringLiteral("p.hiproj")});
+    QCOMPARE(o.paths.size(), 3);
+    QVERIFY(ParseCommandLine({QStringLiteral("--frobnicate")}).error.contains(QStringLiteral("--frobnicate")));
+    QVERIFY(!ParseCommandLine({QStringLiteral("--demo"), QStringLiteral("hull.ply")}).error.isEmpty());
+    o = ParseCommandLine({QStringLiteral("--"), QStringLiteral("--odd-name.ply")});
+    QCOMPARE(o.paths, QStringList{QStringLiteral("--odd-name.ply")});
+    QVERIFY(ParseCommandLine({QStringLiteral("--help")}).help);
+    QVERIFY(ParseCommandLine({QStringLiteral("--version")}).version);
+    QVERIFY(HeadlessText().contains(QStringLiteral("hullinspect-cli run --demo --out DIR")));
+  }
+
+  void openedPathsAreSorted() {
+    const auto& demo = LoadDemo();
+    ClassifiedPaths c = ClassifyPaths({demo.mesh_path, demo.directory});
+    QVERIFY(c.error.isEmpty());
+    QCOMPARE(QDir::cleanPath(c.mesh), QDir::cleanPath(demo.mesh_path));
+    QCOMPARE(QDir::cleanPath(c.bundle), QDir::cleanPath(demo.directory));
+    c = ClassifyPaths({demo.directory + QStringLiteral("/survey.json")});
+    QCOMPARE(QDir::cleanPath(c.bundle), QDir::cleanPath(demo.directory));
+
+    QTemporaryDir dir;
+    const QString text = dir.filePath(QStringLiteral("notes.txt"));
+    WriteText(text, "hello");
+    QVERIFY(ClassifyPaths({text}).error.contains(QStringLiteral("not a mesh")));
+    QVERIFY(ClassifyPaths({dir.filePath(QStringLiteral("missing.ply"))}).error.contains(QStringLiteral("no such")));
+    QVERIFY(ClassifyPaths({demo.mesh_path, demo.mesh_path}).error.contains(QStringLiteral("one mesh")));
+    const QString project = dir.filePath(QStringLiteral("p.hiproj"));
+    WriteText(project, "{}");
+    QVERIFY(!ClassifyPaths({project, demo.mesh_path}).error.isEmpty());
+    QCOMPARE(ClassifyPaths({project}).project, project);
+  }
+};
+
+HI_GUI_TEST_MAIN(UiLogicTest)
+#include "ui_logic_test.moc"
