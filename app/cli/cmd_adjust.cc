@@ -2,13 +2,11 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "adjust/bundle_adjuster.h"
 #include "adjust/evaluation.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/console_progress.h"
-#include "geometry/mesh_io.h"
-#include "survey/survey_io.h"
+#include "pipeline/pipeline.h"
 
 namespace hull::cli {
 namespace {
@@ -31,23 +29,26 @@ options:
   --no-servo           hold the servo angles at their measurements
   --no-extrinsic       hold the camera extrinsic at its nominal value
   --no-dvl             leave out the DVL raycast factors
+  --no-align           start from the bundle's model_pose_guess as it is
+                       (default: refine it by GICP of the DVL returns, or
+                       search for it when the bundle has none)
   --evaluate           compare with the bundle's truth/ and print the figures
   --verbose            print Ceres' per-iteration log
   --quiet              no progress output
-The initial model pose is the bundle's model_pose_guess, or the GICP
-alignment of the DVL returns when it has none (see 'align').
+The initial model pose (and the prior of eq. 8) is the GICP alignment of the
+DVL returns to the mesh (see 'align').
 )";
 
 }  // namespace
 
 int RunAdjust(const CommandArgs& argv) {
-  Args a(argv, {"no-servo", "no-extrinsic", "no-dvl", "evaluate", "verbose", "quiet"});
+  Args a(argv, {"no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate", "verbose", "quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
   a.AllowOnly({"mesh", "mesh-scale", "model", "sigma0", "sigma1", "lookup", "max-iterations", "function-tolerance",
-               "threads", "no-servo", "no-extrinsic", "no-dvl", "evaluate", "verbose", "quiet", "out"});
+               "threads", "no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate", "verbose", "quiet", "out"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
@@ -69,24 +70,23 @@ int RunAdjust(const CommandArgs& argv) {
   o.verbose = a.Has("verbose");
   o.Check();
 
-  const SurveyBundle bundle = ReadSurveyBundle(a.positionals()[0]);
-  const std::string mesh_path = a.Get("mesh", bundle.ModelHintPath());
-  if (mesh_path.empty()) throw UsageError("the bundle has no model_hint: give --mesh");
-  MeshLoadOptions lo;
-  lo.scale = a.GetDouble("mesh-scale", 1.0);
-  const TriangleMesh mesh = LoadMesh(mesh_path, lo);
+  const PipelineInputs in = LoadPipelineInputs(a.positionals()[0], a.Get("mesh", ""), a.GetDouble("mesh-scale", 1.0));
   ConsoleProgress progress(a.Has("quiet"));
   Pose x_gM0;
-  if (bundle.manifest.model_pose_guess) {
-    x_gM0 = Pose::FromVector(*bundle.manifest.model_pose_guess);
+  if (a.Has("no-align")) {
+    if (!in.bundle.manifest.model_pose_guess) {
+      throw InputError({in.bundle_path + "/survey.json", 0, 0, "model_pose_guess"},
+                       "--no-align needs a model_pose_guess in the bundle");
+    }
+    x_gM0 = Pose::FromVector(*in.bundle.manifest.model_pose_guess);
   } else {
-    throw InputError({bundle.directory + "/survey.json", 0, 0, "model_pose_guess"},
-                     "no model_pose_guess: run 'hullinspect-cli run' (aligns the DVL returns first)");
+    SubProgress p(progress, 0, 0.1);
+    const ModelAlignment al = RunAlignment(in, PipelineOptions(), p);
+    x_gM0 = al.x_gM;
+    std::printf("alignment: DVL residual RMS %.4f -> %.4f m\n", al.residual_rms_before, al.residual_rms_after);
   }
-  AdjustmentResult r = RunAdjustment(bundle, mesh, x_gM0, o, progress);
-  r.bundle_path = std::filesystem::absolute(a.positionals()[0]).string();
-  r.mesh_path = std::filesystem::absolute(mesh_path).string();
-  r.mesh_scale = lo.scale;
+  SubProgress p(progress, a.Has("no-align") ? 0 : 0.1, 1.0);
+  const AdjustmentResult r = RunAdjustmentStep(in, x_gM0, o, p);
   progress.Finish();
   WriteAdjustmentResult(r, out);
   std::printf("%s: %zu iterations, cost %.6g -> %.6g, %.2f s (solver %.2f s), lambda=1 for %.1f %% of %zu landmarks\n",
@@ -94,7 +94,9 @@ int RunAdjust(const CommandArgs& argv) {
               r.iterations.empty() ? 0 : static_cast<std::size_t>(r.iterations.back().iteration), r.initial_cost,
               r.final_cost, r.seconds, r.solver_seconds, 100 * r.FractionOnSurface(), r.landmarks.size());
   std::printf("termination: %s\nwrote %s\n", r.termination.c_str(), out.c_str());
-  if (a.Has("evaluate") && bundle.truth) std::printf("%s", EvaluateAdjustment(bundle, mesh, r).ToString().c_str());
+  if (a.Has("evaluate") && in.bundle.truth) {
+    std::printf("%s", EvaluateAdjustment(in.bundle, in.mesh, r).ToString().c_str());
+  }
   return kExitOk;
 }
 

@@ -172,7 +172,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   const Pose x_s_cT0 = BlockToPose(s.extrinsic.data());
   const Pose x_gM0 = x_gM_start;
   std::vector<std::vector<int>> lm_obs;  // observations used, per kept landmark
-  int skipped = 0;
+  int skipped = 0, behind = 0;
   for (std::int64_t id : ids) {
     const std::vector<int>& list = obs_of[id];
     std::set<std::int64_t> views;
@@ -217,6 +217,32 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
         continue;
       }
       p = t->point;
+    }
+    // Observations whose camera sees the initial point from behind cannot be
+    // evaluated (Ceres needs every residual at the start): leave them out.
+    {
+      std::vector<int> in_front;
+      std::set<std::int64_t> kept_views;
+      for (int fi : used) {
+        const FeatureObservation& f = b.features[static_cast<std::size_t>(fi)];
+        const int k = kf_index.at(f.keyframe);
+        const Pose g_cT = BlockToPose(s.pose[static_cast<std::size_t>(k)].data()) *
+                          man.VehicleToServo(s.servo[static_cast<std::size_t>(k)]) * x_s_cT0;
+        const bool front = (g_cT.Inverse() * p).z() > 0.05 && (!(f.has_bottom && man.camera.stereo()) ||
+                                                               ((g_cT * cam.top_to_bottom).Inverse() * p).z() > 0.05);
+        if (front) {
+          in_front.push_back(fi);
+          kept_views.insert(f.keyframe);
+        } else {
+          ++behind;
+        }
+      }
+      if (static_cast<int>(kept_views.size()) < o.min_observations) {
+        ++skipped;
+        continue;
+      }
+      used.swap(in_front);
+      views.swap(kept_views);
     }
     s.landmark.push_back({p.x(), p.y(), p.z()});
     s.landmark_id.push_back(id);
@@ -335,6 +361,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   AdjustmentResult result;
   result.options = o;
   result.num_landmarks_skipped = skipped;
+  result.observations_rejected = behind;
   auto dvl_residuals = [&](bool initial) {
     std::size_t n = 0;
     for (const DvlRecord& d : b.dvl) {
