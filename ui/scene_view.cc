@@ -26,6 +26,7 @@ SceneView::SceneView(QWidget* parent) : QWidget(parent), impl_(std::make_unique<
   // One device pixel per widget pixel keeps screenshots and picking simple
   // and identical across displays.
   vtk_widget_->setEnableHiDPI(false);
+  vtk_widget_->setFocusPolicy(Qt::StrongFocus);  // clicking it makes the scene the active view
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   vtk_widget_->interactor()->SetInteractorStyle(style);
   vtk_widget_->installEventFilter(this);

@@ -115,7 +115,7 @@ SceneViewImpl::SceneViewImpl() {
   }
   selection_ = AddActor();
   selection_->GetProperty()->SetColor(1.0, 1.0, 1.0);
-  selection_->GetProperty()->SetPointSize(11.0);
+  selection_->GetProperty()->SetPointSize(13.0);
   selection_->GetProperty()->LightingOff();
   selection_->PickableOff();
   selection_->VisibilityOff();
@@ -142,9 +142,9 @@ SceneViewImpl::SceneViewImpl() {
   legend_->SetNumberOfLabels(5);
   legend_->SetLabelFormat("%+.3f");
   legend_->SetMaximumWidthInPixels(110);
-  legend_->GetPositionCoordinate()->SetValue(0.85, 0.06);
+  legend_->GetPositionCoordinate()->SetValue(0.85, 0.05);
   legend_->SetWidth(0.13);
-  legend_->SetHeight(0.86);
+  legend_->SetHeight(0.6);
   legend_->UnconstrainedFontSizeOn();
   legend_->SetVerticalTitleSeparation(6);
   legend_->GetTitleTextProperty()->SetFontSize(14);

@@ -14,6 +14,7 @@
 #include <QProcess>
 #include <QPushButton>
 #include <QSignalSpy>
+#include <QStatusBar>
 #include <QTemporaryDir>
 #include <QUndoStack>
 #include <QUrl>
@@ -376,6 +377,48 @@ class MainWindowTest : public QObject {
     QCOMPARE(QImage(panel_png).size(), win.w.parameterPanel()->size());
     QVERIFY(!win.w.SaveScreenshot(dir.filePath(QStringLiteral("no/such/folder/x.png"))));
     QCOMPARE(win.errors.size(), std::size_t(1));
+  }
+
+  void theWindowAsTheUserGuideShowsIt() {
+    // The demo as a user first sees it, then coloured by deviation with a
+    // landmark picked; the grabs (written to the test output folder) are the
+    // user guide's screenshots.
+    Window win;
+    win.w.setFixedSize(1280, 860);
+    QVERIFY(QTest::qWaitForWindowExposed(&win.w));
+    win.w.OpenDemo();
+    HI_WAIT_IDLE(win.w.jobs(), 60000);
+    win.w.statusBar()->clearMessage();
+    QTest::qWait(300);
+    auto colourful = [](const QImage& image, const QRect& r) {
+      QSet<QRgb> colours;
+      for (int y = r.top(); y < r.bottom(); y += 3) {
+        for (int x = r.left(); x < r.right(); x += 3) colours.insert(image.pixel(x, y));
+      }
+      return colours.size();
+    };
+    const QRect scene_rect(win.w.sceneView()->mapTo(&win.w, QPoint(0, 0)), win.w.sceneView()->size());
+    QImage first = win.w.grab().toImage();
+    QVERIFY(colourful(first, scene_rect) > 30);
+    QVERIFY(first.save(hull::ui::testing::OutputDir() + QStringLiteral("/user_guide_demo.png")));
+
+    auto* colouring = win.w.layersPanel()->colouringBox();
+    colouring->setCurrentIndex(colouring->findData(QStringLiteral("deviation")));
+    win.w.layersPanel()->layerCheckBox(SceneLayer::kDvlHits)->setChecked(false);
+    const auto& demo = LoadDemo();
+    const auto cylinder = std::find_if(demo.overlays->landmarks.begin(), demo.overlays->landmarks.end(),
+                                       [](const LandmarkMarker& l) { return l.object.rfind("cyl", 0) == 0; });
+    QVERIFY(cylinder != demo.overlays->landmarks.end());
+    win.w.sceneView()->Grab();
+    const PickInfo info = win.w.sceneView()->PickAt(*win.w.sceneView()->WidgetPosition(cylinder->position));
+    QCOMPARE(info.kind, PickKind::kLandmark);
+    QVERIFY(win.w.sceneView()->LegendVisible());
+    QVERIFY(win.w.pickInfoPanel()->isVisible());
+    QTest::qWait(300);
+    const QImage second = win.w.grab().toImage();
+    QVERIFY(colourful(second, scene_rect) > 30);
+    QVERIFY(second != first);
+    QVERIFY(second.save(hull::ui::testing::OutputDir() + QStringLiteral("/user_guide_deviation.png")));
   }
 
   void exportingThePlacedHull() {
