@@ -81,6 +81,7 @@ SurveySimulationOptions SurveyPreset(const std::string& name) {
     o.plan.keyframe_spacing = 0.45;
     o.objects = ObjectSet::kScattered;
     o.scattered_patches = 40;
+    o.nav_source = SurveySimulationOptions::NavSource::kOnlineSlam;  // five hours of survey
   } else {
     throw OptionError("preset", "unknown preset '" + name + "' (known: demo, mono, curtiss)");
   }
@@ -446,6 +447,7 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   // ---- navigation: truth, dead reckoning from noisy odometry, zpr, servo -----
   const double servo_bias = rng.Sign() * o.servo_bias_deg * kDeg * rng.Uniform(0.8, 1.2);
   Vector6d dr = (keys[0].x_gv * SmallRandomPose(rng, o.start_pose_error_m, o.start_pose_error_deg)).ToVector();
+  Vector6d slam_err = Vector6d::Zero();
   for (int k = 0; k < K; ++k) {
     const PlannedKeyframe& key = keys[static_cast<std::size_t>(k)];
     Rng r = Rng::ForItem(o.seed, 2, static_cast<std::uint64_t>(k));
@@ -463,7 +465,19 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
     NavRecord n;
     n.keyframe = k;
     n.t = key.t;
-    n.x_gv = dr;
+    if (o.nav_source == SurveySimulationOptions::NavSource::kDeadReckoning) {
+      n.x_gv = dr;
+    } else {
+      // A first-order Gauss-Markov error per component, stationary std = slam_error.
+      const double dt = k > 0 ? key.t - keys[static_cast<std::size_t>(k - 1)].t : 0.0;
+      const double a = std::exp(-dt / o.slam_correlation_s), b = std::sqrt(1 - a * a);
+      for (int i = 0; i < 6; ++i) {
+        // (depth: the pressure sensor keeps the SLAM depth closer)
+        const double sigma = i < 3 ? o.slam_error_m * (i == 2 ? 0.3 : 1.0) : o.slam_error_deg * kDeg;
+        slam_err[i] = k == 0 ? r.Gaussian(sigma) : a * slam_err[i] + b * r.Gaussian(sigma);
+      }
+      n.x_gv = (key.x_gv * Pose::FromVector(slam_err)).ToVector();
+    }
     n.depth = xt[2] + r.TruncatedGaussian(nz.depth_sigma, 4.0);
     n.roll_meas = WrapAngle(xt[3] + r.TruncatedGaussian(nz.roll_pitch_sigma, 4.0));
     n.pitch_meas = xt[4] + r.TruncatedGaussian(nz.roll_pitch_sigma, 4.0);

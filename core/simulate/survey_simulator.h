@@ -65,6 +65,16 @@ struct SurveySimulationOptions {
   // geometry barely observes without the surface constraint.
   double extrinsic_error_m = 0.015, extrinsic_error_deg = 1.0;
   double start_pose_error_m = 0.05, start_pose_error_deg = 0.2;
+  // Where nav.csv's initial poses come from. Dead reckoning composes the
+  // noisy odometry (exactly what odometry.csv says; its drift grows without
+  // bound, fine for minutes of survey). Online SLAM, as on the HAUV for hours
+  // of survey (Ozog et al. use SLAM-corrected poses), gives the truth plus
+  // a slowly wandering bounded error of about slam_error_m / slam_error_deg
+  // (odometry.csv stays the same noisy relative measurements).
+  enum class NavSource { kDeadReckoning, kOnlineSlam };
+  NavSource nav_source = NavSource::kDeadReckoning;
+  double slam_error_m = 0.3, slam_error_deg = 0.5;
+  double slam_correlation_s = 600.0;  // time constant of the SLAM error
 
   ObjectSet objects = ObjectSet::kDemo;
   int scattered_patches = 0;
