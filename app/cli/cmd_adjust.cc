@@ -26,6 +26,7 @@ options:
   --lookup NAME        closest-face (default) or nearest-vertex (the paper's)
   --max-iterations N   Levenberg-Marquardt iterations (default 100)
   --threads N          0: all cores (default)
+  --linear-solver S    auto (default), sparse-schur or iterative-schur
   --no-servo           hold the servo angles at their measurements
   --no-extrinsic       hold the camera extrinsic at its nominal value
   --no-dvl             leave out the DVL raycast factors
@@ -63,6 +64,15 @@ int RunAdjust(const CommandArgs& argv) {
   o.lookup = lookup == "closest-face" ? SurfaceLookup::kClosestFace : SurfaceLookup::kNearestVertex;
   o.max_iterations = static_cast<int>(a.GetInt("max-iterations", o.max_iterations));
   o.function_tolerance = a.GetDouble("function-tolerance", o.function_tolerance);
+  if (a.Has("linear-solver")) {
+    const std::string ls = a.Get("linear-solver");
+    if (ls == "sparse-schur")
+      o.linear_solver = AdjustmentOptions::LinearSolver::kSparseSchur;
+    else if (ls == "iterative-schur")
+      o.linear_solver = AdjustmentOptions::LinearSolver::kIterativeSchur;
+    else if (ls != "auto")
+      throw UsageError("--linear-solver expects auto, sparse-schur or iterative-schur");
+  }
   o.num_threads = static_cast<int>(a.GetInt("threads", 0));
   o.estimate_servo = !a.Has("no-servo");
   o.estimate_extrinsic = !a.Has("no-extrinsic");

@@ -50,6 +50,12 @@ struct AdjustmentOptions {
   double outlier_sigmas = 4.0;
   int rejection_rounds = 2;
   // Solver.
+  enum class LinearSolver {
+    kAuto,            // sparse Schur up to 3000 keyframes, iterative Schur above
+    kSparseSchur,     // exact reduced camera system (SuiteSparse Cholesky)
+    kIterativeSchur,  // conjugate gradients on the implicit Schur complement
+  };
+  LinearSolver linear_solver = LinearSolver::kAuto;
   int max_iterations = 100;
   double function_tolerance = 1e-6;
   double gradient_tolerance = 1e-10;

@@ -407,7 +407,11 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   ceres::Solver::Options so;
   so.minimizer_type = ceres::TRUST_REGION;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  so.linear_solver_type = ceres::SPARSE_SCHUR;
+  const bool iterative = o.linear_solver == AdjustmentOptions::LinearSolver::kIterativeSchur ||
+                         (o.linear_solver == AdjustmentOptions::LinearSolver::kAuto && K > 3000);
+  so.linear_solver_type = iterative ? ceres::ITERATIVE_SCHUR : ceres::SPARSE_SCHUR;
+  so.preconditioner_type = ceres::SCHUR_JACOBI;
+  so.use_explicit_schur_complement = false;
   so.max_num_iterations = o.max_iterations;
   so.function_tolerance = o.function_tolerance;
   so.gradient_tolerance = o.gradient_tolerance;

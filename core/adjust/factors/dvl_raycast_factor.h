@@ -39,6 +39,8 @@ void BeamInGlobal(const DvlModel& m, const T* pose, const T* servo, const Eigen:
 
 class DvlRaycastFactor {
  public:
+  static constexpr double kMinIncidenceCosine = 0.26;
+
   DvlRaycastFactor(const DvlModel* model, const Eigen::Vector3d& beam, double measured, double sigma)
       : model_(model), beam_(beam.normalized()), measured_(measured), inv_sigma_(1.0 / sigma) {}
 
@@ -60,9 +62,29 @@ class DvlRaycastFactor {
     const PoseT<T> Mg = (PoseFromBlock(x_gC) * PoseConstant<T>(model_->model_offset)).Inverse();
     const Eigen::Matrix<T, 3, 1> oM = Mg * o, dM = Mg.q * d;
     const RayHit hit = model_->mesh->Raycast(ScalarOf(oM), ScalarOf(dM), model_->max_range);
-    int face = hit.hit ? hit.face : last_face_.load(std::memory_order_relaxed);
-    if (hit.hit) last_face_.store(hit.face, std::memory_order_relaxed);
     const TriangleMesh& mesh = model_->mesh->mesh();
+    // Data association: the face hit now, unless the face used last time
+    // explains the measured range better (the beam slipping past a
+    // silhouette onto a far part of the hull is a jump of metres in the
+    // prediction; staying on the last face's plane keeps the cost continuous).
+    auto plane_range = [&](int f, double* cosine) {
+      const Eigen::Vector3d& n = mesh.face_normals[static_cast<std::size_t>(f)];
+      const Eigen::Vector3d& p0 = mesh.vertices[static_cast<std::size_t>(mesh.faces[static_cast<std::size_t>(f)][0])];
+      const Eigen::Vector3d o = ScalarOf(oM), d = ScalarOf(dM);
+      *cosine = std::abs(n.dot(d)) / d.norm();
+      return n.dot(p0 - o) / n.dot(d);
+    };
+    int face = hit.hit ? hit.face : -1;
+    const int last = last_face_.load(std::memory_order_relaxed);
+    if (last >= 0 && last != face) {
+      double c_last = 0;
+      const double r_last = plane_range(last, &c_last);
+      const bool last_ok = c_last >= kMinIncidenceCosine && r_last > 0;
+      if (face < 0 ? last_ok : (last_ok && std::abs(r_last - measured_) < std::abs(hit.range - measured_))) {
+        face = last;
+      }
+    }
+    if (face >= 0) last_face_.store(face, std::memory_order_relaxed);
     if (face < 0) {
       residual[0] = T(0);  // never hit the mesh: no information
       return true;
@@ -70,8 +92,11 @@ class DvlRaycastFactor {
     const Eigen::Vector3d& n = mesh.face_normals[static_cast<std::size_t>(face)];
     const Eigen::Vector3d& p0 = mesh.vertices[static_cast<std::size_t>(mesh.faces[static_cast<std::size_t>(face)][0])];
     const T denom = n.cast<T>().dot(dM);
-    if (std::abs(ScalarOf(denom)) < 1e-6) {
-      residual[0] = T(0);  // grazing the face's plane
+    if (std::abs(ScalarOf(denom)) < kMinIncidenceCosine * ScalarOf(dM.norm())) {
+      // Grazing the face (beyond ~75 deg of incidence): the predicted range
+      // jumps with the smallest motion, and a DVL's bottom track would not
+      // lock there either. No information.
+      residual[0] = T(0);
       return true;
     }
     const T range = n.cast<T>().dot(p0.cast<T>() - oM) / denom;
