@@ -1,0 +1,71 @@
+// Options of model-assisted mapping (Ozog et al., Section 3): one struct for
+// the GUI panel, the CLI flags and the project file; Check() refuses invalid
+// values naming the field. Lengths in metres, areas in square metres.
+#pragma once
+
+namespace hull {
+
+struct MappingOptions {
+  // ---- Algorithm 1: shapes per keyframe -------------------------------------
+  // Features whose |deviation| from the CAD surface exceeds tau are clustered
+  // (line 6). 0 (the paper's preferred setting) clusters every feature, so
+  // the shapes cover everything seen; 0.06 m gives fewer false positives.
+  double tau = 0.0;
+  // Alpha-shape radius: a Delaunay triangle is kept when its circumradius is
+  // at most alpha (CGAL's Alpha_shape_2 takes alpha squared). Larger values
+  // bridge wider gaps between features; smaller ones leave holes.
+  double alpha = 0.12;
+  // DBSCAN over the points (x, y, |d|), x and y in the top-camera frame:
+  // neighbourhood radius ...
+  double dbscan_eps = 0.10;
+  // ... and the number of points (the point itself included) within eps that
+  // makes a core point.
+  int dbscan_min_points = 3;
+
+  // ---- Algorithm 2: fusion into the mesh -------------------------------------
+  // Only model vertices within this distance of the top camera are fused
+  // (the paper's nearby_vertices(), 5 m).
+  double fusion_radius = 5.0;
+  // Target edge length of the isotropic remeshing where shapes depart from
+  // the CAD surface.
+  double refine_edge = 0.03;
+  // A clustered feature departs from the CAD surface when its |deviation|
+  // exceeds this and two more of its cluster within alpha do too (one noisy
+  // feature alone refines nothing).
+  double refine_threshold = 0.01;
+  // The refined region is where departing features are seen on the CAD,
+  // grown by this margin plus alpha.
+  double refine_margin = 0.10;
+
+  // ---- Detected objects --------------------------------------------------------
+  // A detected object is a connected region of the fused model whose
+  // deviation exceeds object_min_height (h_min) ...
+  double object_min_height = 0.03;
+  // ... over at least this footprint area.
+  double object_min_area = 0.01;
+
+  // ---- Fouling assessment --------------------------------------------------------
+  // Stations along the hull's length (zones are station x {bottom, port,
+  // starboard}); station 0 is at the bow.
+  int stations = 20;
+  // A surface is bottom where its outward normal is within this angle
+  // (degrees) of straight down; surfaces within it of straight up (decks)
+  // belong to no zone.
+  double bottom_angle_deg = 45.0;
+  // Spacing of the samples of the CAD surface that measure the inspected
+  // area (a sample is inspected when a keyframe's top camera sees it).
+  double inspection_spacing = 0.10;
+  // A camera inspects the surface up to this distance.
+  double inspection_range = 4.0;
+
+  // ---- Execution -------------------------------------------------------------------
+  // Worker threads (TBB); 0: all cores. Results do not depend on it.
+  int num_threads = 0;
+
+  // Throws OptionError naming the first invalid field and why.
+  void Check() const;
+  // alpha as CGAL takes it (a squared radius).
+  double CgalAlpha() const { return alpha * alpha; }
+};
+
+}  // namespace hull

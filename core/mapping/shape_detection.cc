@@ -1,0 +1,109 @@
+#include "mapping/shape_detection.h"
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+
+#include "mapping/alpha_shape.h"
+#include "mapping/dbscan.h"
+
+namespace hull {
+namespace {
+
+// Features closer than this to the camera plane cannot be projected.
+constexpr double kMinDepth = 1e-3;
+
+}  // namespace
+
+KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o) {
+  const MappingKeyframe& kf = input.keyframes[static_cast<std::size_t>(keyframe)];
+  KeyframeShapes out;
+  out.keyframe = keyframe;
+  out.id = kf.id;
+  const Pose cT_g = kf.x_g_cT.Inverse();
+  // Lines 4-10: the points to cluster, (x, y, |d|).
+  std::vector<Eigen::Vector3d> cluster_points;
+  std::vector<int> cluster_point_of;  // -> out.points
+  for (const int li : kf.landmarks) {
+    const MappingLandmark& l = input.landmarks[static_cast<std::size_t>(li)];
+    ShapePoint p;
+    p.landmark = li;
+    p.p_c = cT_g * l.p_g;
+    if (p.p_c.z() < kMinDepth) continue;
+    p.pixel = input.camera.top.Project(p.p_c);
+    p.deviation = l.deviation;
+    if (std::abs(l.deviation) > o.tau) {
+      p.cluster = ShapePoint::kNoise;
+      cluster_points.emplace_back(p.p_c.x(), p.p_c.y(), std::abs(l.deviation));
+      cluster_point_of.push_back(static_cast<int>(out.points.size()));
+    }
+    out.points.push_back(p);
+  }
+  // Line 11: DBSCAN.
+  const DbscanResult db = Dbscan(cluster_points, o.dbscan_eps, o.dbscan_min_points);
+  std::vector<std::vector<int>> members(static_cast<std::size_t>(db.num_clusters));
+  for (std::size_t i = 0; i < db.labels.size(); ++i) {
+    const int c = db.labels[i];
+    out.points[static_cast<std::size_t>(cluster_point_of[i])].cluster = c;
+    if (c >= 0) members[static_cast<std::size_t>(c)].push_back(cluster_point_of[i]);
+  }
+  // Lines 12-15: an alpha shape per cluster over camera (x, y), lifted by z.
+  for (int c = 0; c < db.num_clusters; ++c) {
+    const std::vector<int>& m = members[static_cast<std::size_t>(c)];
+    std::vector<Eigen::Vector2d> xy;
+    xy.reserve(m.size());
+    for (const int pi : m) xy.push_back(out.points[static_cast<std::size_t>(pi)].p_c.head<2>());
+    std::vector<Face> tris = AlphaShapeTriangles(xy, o.alpha);
+    if (tris.empty()) continue;
+    // Keep only the vertices the triangles use, in cluster order.
+    std::vector<int> local(m.size(), -1);
+    for (const Face& f : tris) {
+      for (const int v : f) local[static_cast<std::size_t>(v)] = 0;
+    }
+    DetectedShape s;
+    s.cluster = c;
+    for (std::size_t i = 0; i < m.size(); ++i) {
+      if (local[i] < 0) continue;
+      local[i] = static_cast<int>(s.points.size());
+      const ShapePoint& p = out.points[static_cast<std::size_t>(m[i])];
+      s.points.push_back(m[i]);
+      s.vertices_c.push_back(p.p_c);
+      s.vertices_g.push_back(input.landmarks[static_cast<std::size_t>(p.landmark)].p_g);
+      s.pixels.push_back(p.pixel);
+      s.deviation.push_back(p.deviation);
+    }
+    for (const Face& f : tris) {
+      // Counter-clockwise in camera (x, y) has its normal along +z, away from
+      // the camera: swap two corners so that it faces the camera.
+      const Face t = {local[static_cast<std::size_t>(f[0])], local[static_cast<std::size_t>(f[2])],
+                      local[static_cast<std::size_t>(f[1])]};
+      s.triangles.push_back(t);
+      const Eigen::Vector3d& a = s.vertices_c[static_cast<std::size_t>(t[0])];
+      s.area += 0.5 * (s.vertices_c[static_cast<std::size_t>(t[1])] - a)
+                          .cross(s.vertices_c[static_cast<std::size_t>(t[2])] - a)
+                          .norm();
+    }
+    out.shapes.push_back(std::move(s));
+  }
+  return out;
+}
+
+std::vector<KeyframeShapes> DetectAllShapes(const MappingInput& input, const MappingOptions& options,
+                                            Progress& progress) {
+  const int n = static_cast<int>(input.keyframes.size());
+  std::vector<KeyframeShapes> out(static_cast<std::size_t>(n));
+  std::atomic<bool> cancelled{false};
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
+    if (cancelled.load(std::memory_order_relaxed) || progress.Cancelled()) {
+      cancelled = true;
+      return;
+    }
+    for (int k = r.begin(); k != r.end(); ++k) out[static_cast<std::size_t>(k)] = DetectShapes(input, k, options);
+  });
+  progress.ThrowIfCancelled();
+  if (cancelled) throw Cancelled();
+  return out;
+}
+
+}  // namespace hull
