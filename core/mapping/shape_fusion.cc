@@ -1,0 +1,139 @@
+#include "mapping/shape_fusion.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+
+#include "geometry/point_index.h"
+#include "mapping/shape_raycast.h"
+
+namespace hull {
+namespace {
+
+// Keyframes whose hits are gathered in parallel before being applied in order.
+constexpr std::size_t kChunk = 128;
+
+struct Hit {
+  int vertex;
+  Eigen::Vector3d p;
+};
+
+// Lines 8-10 for one vertex, shared by both versions so that they compute
+// bit-identical points: the vertex must be within the fusion radius and face
+// the camera; the ray from the camera centre through it, in the camera
+// frame, is cast by `cast` (FirstShapeHit or ShapeFootprint::Hit).
+template <typename Cast>
+bool RayThroughVertex(const Pose& cam, const Pose& cam_inv, const Eigen::Vector3d& v, const Eigen::Vector3d& normal,
+                      double radius2, Cast&& cast, Eigen::Vector3d* p) {
+  const Eigen::Vector3d d = v - cam.translation();
+  if (!(d.squaredNorm() <= radius2)) return false;
+  if (!(normal.dot(d) < 0)) return false;  // faces away from the camera
+  const Eigen::Vector3d dir = cam_inv * v;
+  const ShapeHit h = cast(dir);
+  if (!h.hit) return false;
+  *p = cam * (h.t * dir);
+  return true;
+}
+
+FusionResult Start(const TriangleMesh& prior) {
+  FusionResult r;
+  r.vertices = prior.vertices;
+  r.count.assign(prior.num_vertices(), 0);
+  return r;
+}
+
+}  // namespace
+
+FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& tree, const std::vector<Pose>& x_M_cT,
+                        const std::vector<KeyframeShapes>& shapes, double radius, Progress& progress) {
+  FusionResult r = Start(prior);
+  std::vector<MovingAverage> avg(prior.num_vertices());
+  const double radius2 = radius * radius;
+  std::vector<std::vector<Hit>> hits(kChunk);
+  for (std::size_t begin = 0; begin < shapes.size(); begin += kChunk) {
+    progress.ThrowIfCancelled();
+    const std::size_t end = std::min(shapes.size(), begin + kChunk);
+    tbb::parallel_for(std::size_t(begin), end, [&](std::size_t k) {
+      std::vector<Hit>& out = hits[k - begin];
+      out.clear();
+      const KeyframeShapes& ks = shapes[k];
+      const Pose& cam = x_M_cT[static_cast<std::size_t>(ks.keyframe)];
+      const Pose inv = cam.Inverse();
+      for (const DetectedShape& s : ks.shapes) {
+        const ShapeFootprint fp(s);
+        const Eigen::Vector3d axis = cam.Rotate(fp.axis());
+        const std::size_t first = out.size();
+        tree.Query(cam.translation(), radius, axis, fp.cos_half_angle(), fp.sin_half_angle(), fp.narrow(), [&](int i) {
+          Eigen::Vector3d p;
+          if (RayThroughVertex(
+                  cam, inv, prior.vertices[static_cast<std::size_t>(i)],
+                  prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
+                  [&](const Eigen::Vector3d& dir) { return fp.Hit(dir); }, &p)) {
+            out.push_back({i, p});
+          }
+        });
+        // Within a shape each vertex is hit once; sorting only fixes the order
+        // in which equal work is done, not the result.
+        std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                  [](const Hit& a, const Hit& b) { return a.vertex < b.vertex; });
+      }
+    });
+    for (std::size_t k = begin; k < end; ++k) {
+      for (const Hit& h : hits[k - begin]) {
+        MovingAverage& a = avg[static_cast<std::size_t>(h.vertex)];
+        if (a.n == 0) a.value = prior.vertices[static_cast<std::size_t>(h.vertex)];
+        a.Add(h.p);
+        ++r.hits;
+      }
+    }
+    progress.Update(static_cast<double>(end) / static_cast<double>(shapes.size()), "fusing shapes into the model");
+  }
+  for (std::size_t i = 0; i < avg.size(); ++i) {
+    if (avg[i].n == 0) continue;
+    r.vertices[i] = avg[i].value;
+    r.count[i] = avg[i].n;
+  }
+  return r;
+}
+
+FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<Pose>& x_M_cT,
+                                  const std::vector<KeyframeShapes>& shapes, double radius) {
+  FusionResult r = Start(prior);
+  std::vector<MovingAverage> avg(prior.num_vertices());
+  for (std::size_t i = 0; i < avg.size(); ++i) avg[i].value = prior.vertices[i];
+  const PointIndex index(prior.vertices);
+  const double radius2 = radius * radius;
+  for (const KeyframeShapes& ks : shapes) {  // line 2
+    const Pose& cam = x_M_cT[static_cast<std::size_t>(ks.keyframe)];
+    const Pose inv = cam.Inverse();
+    // Line 5: nearby vertices (a little more than the radius; the exact test
+    // is RayThroughVertex's).
+    std::vector<int> nearby;
+    for (const auto& [i, d2] : index.Within(cam.translation(), radius * (1 + 1e-9) + 1e-9)) {
+      (void)d2;
+      nearby.push_back(i);
+    }
+    std::sort(nearby.begin(), nearby.end());
+    for (const DetectedShape& s : ks.shapes) {  // line 6
+      for (const int i : nearby) {              // line 7
+        Eigen::Vector3d p;
+        if (RayThroughVertex(
+                cam, inv, prior.vertices[static_cast<std::size_t>(i)],
+                prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
+                [&](const Eigen::Vector3d& dir) { return FirstShapeHit(s, dir); }, &p)) {
+          avg[static_cast<std::size_t>(i)].Add(p);  // line 11
+          ++r.hits;
+        }
+      }
+    }
+  }
+  for (std::size_t i = 0; i < avg.size(); ++i) {
+    if (avg[i].n == 0) continue;
+    r.vertices[i] = avg[i].value;
+    r.count[i] = avg[i].n;
+  }
+  return r;
+}
+
+}  // namespace hull

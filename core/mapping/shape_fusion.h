@@ -1,0 +1,63 @@
+// Algorithm 2 of Ozog et al.: the shapes of every keyframe fused into the
+// mesh. For every pose and every shape, the ray from the top camera's centre
+// through each model vertex within fusion_radius is cast against the shape;
+// where it meets it at p, the vertex is updated by the moving average of
+// eq. 15, v_{n+1} = (p + n v_n) / (n + 1) (so a fused vertex is the mean of
+// its hits, and an unhit one keeps its prior position). Rays go through the
+// prior vertex positions, as in the paper.
+//
+// Two departures from the paper's text, both documented in docs/mapping.md:
+// the ray is the whole ray through the vertex (up to fusion_radius), not the
+// segment from the camera to it, so that a shape slightly behind the CAD
+// surface (noise, or a dent) pulls the vertex as one in front of it does;
+// and a vertex whose normal faces away from the camera (the far side of the
+// hull, which the camera cannot see) is not fused.
+//
+// FuseShapes finds, per shape, only the vertices whose rays can reach it (a
+// cone around the shape over a tree of the vertices, then a 2-D grid over
+// the shape's footprint on the normalised image plane) and runs keyframes
+// in parallel, applying the updates in keyframe and shape order: its result
+// is bit-identical to FuseShapesBruteForce, the paper's loops literally.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "base/progress.h"
+#include "geometry/pose.h"
+#include "geometry/triangle_mesh.h"
+#include "mapping/point_cone_tree.h"
+#include "mapping/shape_detection.h"
+
+namespace hull {
+
+// Eq. 15: the running mean of a vertex's hits.
+struct MovingAverage {
+  Eigen::Vector3d value = Eigen::Vector3d::Zero();  // v_n (v_0: the prior vertex)
+  int n = 0;
+  void Add(const Eigen::Vector3d& p) {
+    value = (p + n * value) / (n + 1);
+    ++n;
+  }
+};
+
+struct FusionResult {
+  std::vector<Eigen::Vector3d> vertices;  // fused positions (in M), the prior one where never hit
+  std::vector<int> count;                 // hits per vertex (n of eq. 15)
+  std::size_t hits = 0;                   // evaluations of line 11
+};
+
+// prior: the (refined) mesh in M, with vertex normals; prior_tree: a
+// PointConeTree over prior.vertices. x_M_cT: the top camera in M per
+// keyframe (indexed like MappingInput::keyframes); shapes: Algorithm 1's
+// results (KeyframeShapes::keyframe indexes x_M_cT). Throws hull::Cancelled.
+FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& prior_tree, const std::vector<Pose>& x_M_cT,
+                        const std::vector<KeyframeShapes>& shapes, double fusion_radius, Progress& progress);
+
+// The reference: for every keyframe, the vertices within fusion_radius (a
+// k-d tree, the paper's nearby_vertices()), every shape, every vertex, every
+// triangle. Slow; for tests.
+FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<Pose>& x_M_cT,
+                                  const std::vector<KeyframeShapes>& shapes, double fusion_radius);
+
+}  // namespace hull
