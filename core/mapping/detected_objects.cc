@@ -1,0 +1,177 @@
+#include "mapping/detected_objects.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <set>
+
+#include "mapping/surface_clip.h"
+
+namespace hull {
+namespace {
+
+int Find(std::vector<int>& parent, int i) {
+  while (parent[static_cast<std::size_t>(i)] != i) {
+    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+    i = parent[static_cast<std::size_t>(i)];
+  }
+  return i;
+}
+
+struct ZoneAccumulator {
+  double area = 0, integral = 0, max_height = 0;
+};
+
+struct Component {
+  double area = 0, integral = 0, max_height = 0;
+  Eigen::Vector3d first = Eigen::Vector3d::Zero();
+  std::vector<int> vertices;
+  std::map<int, ZoneAccumulator> zones;
+  std::set<int> landmarks;
+  std::set<std::int64_t> keyframes;
+  int object = -1;  // index into the output, when kept
+};
+
+}  // namespace
+
+ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<double>& deviation,
+                              const PointIndex& prior_index, const MeshIndex& cad_index, const HullFrame& hull,
+                              const MappingInput& input, const std::vector<KeyframeShapes>& shapes,
+                              const MappingOptions& o) {
+  ObjectDetection out;
+  const std::size_t nz = static_cast<std::size_t>(hull.num_zones());
+  out.zone_covered_area.assign(nz, 0.0);
+  out.zone_height_integral.assign(nz, 0.0);
+  out.zone_max_height.assign(nz, 0.0);
+  out.zone_objects.assign(nz, 0);
+  const double h = o.object_min_height;
+  const int nv = static_cast<int>(prior.num_vertices());
+  auto above = [&](int v) { return deviation[static_cast<std::size_t>(v)] > h; };
+
+  // Connected regions of vertices above h_min (over the mesh's edges).
+  std::vector<int> parent(static_cast<std::size_t>(nv));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Face& f : prior.faces) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 3)];
+      if (above(a) && above(b)) parent[static_cast<std::size_t>(Find(parent, a))] = Find(parent, b);
+    }
+  }
+  std::vector<int> comp_of(static_cast<std::size_t>(nv), -1);
+  std::vector<Component> comps;
+  std::map<int, int> root_to_comp;
+  for (int v = 0; v < nv; ++v) {
+    if (!above(v)) continue;
+    const int root = Find(parent, v);
+    auto it = root_to_comp.find(root);
+    if (it == root_to_comp.end()) {
+      it = root_to_comp.emplace(root, static_cast<int>(comps.size())).first;
+      comps.emplace_back();
+    }
+    comp_of[static_cast<std::size_t>(v)] = it->second;
+    Component& c = comps[static_cast<std::size_t>(it->second)];
+    c.vertices.push_back(v);
+    c.max_height = std::max(c.max_height, deviation[static_cast<std::size_t>(v)]);
+  }
+
+  // Footprints: each face clipped to where its interpolated deviation exceeds h_min.
+  for (std::size_t f = 0; f < prior.num_faces(); ++f) {
+    const Face& F = prior.faces[f];
+    int comp = -1;
+    for (const int v : F) {
+      if (comp < 0) comp = comp_of[static_cast<std::size_t>(v)];
+    }
+    if (comp < 0) continue;
+    ClipPolygon poly;
+    for (const int v : F)
+      poly.push_back({prior.vertices[static_cast<std::size_t>(v)], deviation[static_cast<std::size_t>(v)]});
+    ClipKeep(poly, [h](const ClipVertex& c) { return c.value - h; });
+    const ClipMoments m = Moments(poly);
+    if (!(m.area > 0)) continue;
+    Component& c = comps[static_cast<std::size_t>(comp)];
+    c.area += m.area;
+    c.integral += m.value;
+    c.first += m.first;
+    const int zone = hull.Zone(m.first / m.area, prior.face_normals[f]);
+    if (zone < 0) continue;
+    ZoneAccumulator& z = c.zones[zone];
+    z.area += m.area;
+    z.integral += m.value;
+    for (const int v : F) z.max_height = std::max(z.max_height, deviation[static_cast<std::size_t>(v)]);
+  }
+
+  // Keep the large enough ones, ordered from the bow aft.
+  std::vector<int> kept;
+  for (std::size_t i = 0; i < comps.size(); ++i) {
+    if (comps[i].area > 0 && comps[i].area >= o.object_min_area) kept.push_back(static_cast<int>(i));
+  }
+  auto centroid = [&](int i) -> Eigen::Vector3d {
+    const Component& c = comps[static_cast<std::size_t>(i)];
+    return c.first / c.area;
+  };
+  std::sort(kept.begin(), kept.end(), [&](int a, int b) {
+    const double da = hull.DistanceFromBow(centroid(a)), db = hull.DistanceFromBow(centroid(b));
+    if (da != db) return da < db;
+    return a < b;
+  });
+  for (std::size_t k = 0; k < kept.size(); ++k) comps[static_cast<std::size_t>(kept[k])].object = static_cast<int>(k);
+
+  // Features over each footprint (nearest model vertex in the region), and
+  // the keyframes whose shapes hold them.
+  const Pose x_Mg = input.x_gM.Inverse();
+  std::set<int> used;
+  for (const auto& ks : shapes) {
+    for (const auto& s : ks.shapes) {
+      for (const int pi : s.points) used.insert(ks.points[static_cast<std::size_t>(pi)].landmark);
+    }
+  }
+  std::vector<int> landmark_comp(input.landmarks.size(), -1);
+  for (const int l : used) {
+    const auto nearest = prior_index.NearestOne(x_Mg * input.landmarks[static_cast<std::size_t>(l)].p_g);
+    if (nearest.first < 0) continue;
+    const int c = comp_of[static_cast<std::size_t>(nearest.first)];
+    if (c < 0 || comps[static_cast<std::size_t>(c)].object < 0) continue;
+    landmark_comp[static_cast<std::size_t>(l)] = c;
+    comps[static_cast<std::size_t>(c)].landmarks.insert(l);
+  }
+  for (const auto& ks : shapes) {
+    for (const auto& s : ks.shapes) {
+      for (const int pi : s.points) {
+        const int c = landmark_comp[static_cast<std::size_t>(ks.points[static_cast<std::size_t>(pi)].landmark)];
+        if (c >= 0) comps[static_cast<std::size_t>(c)].keyframes.insert(ks.id);
+      }
+    }
+  }
+
+  for (const int i : kept) {
+    Component& c = comps[static_cast<std::size_t>(i)];
+    DetectedObject obj;
+    obj.id = "obj-" + std::to_string(c.object + 1);
+    obj.centroid_m = c.first / c.area;
+    const ClosestPoint cp = cad_index.Closest(obj.centroid_m);
+    obj.normal_m =
+        cp.face >= 0 ? cad_index.mesh().face_normals[static_cast<std::size_t>(cp.face)] : Eigen::Vector3d(-hull.up());
+    obj.distance_from_bow = hull.DistanceFromBow(obj.centroid_m);
+    obj.station = hull.Station(obj.centroid_m);
+    obj.side = hull.Side(obj.normal_m);
+    obj.area = c.area;
+    obj.mean_height = c.integral / c.area;
+    obj.max_height = c.max_height;
+    obj.num_features = static_cast<int>(c.landmarks.size());
+    obj.keyframes.assign(c.keyframes.begin(), c.keyframes.end());
+    obj.num_views = static_cast<int>(obj.keyframes.size());
+    obj.vertices = c.vertices;
+    for (const auto& [zone, z] : c.zones) {
+      out.zone_covered_area[static_cast<std::size_t>(zone)] += z.area;
+      out.zone_height_integral[static_cast<std::size_t>(zone)] += z.integral;
+      out.zone_max_height[static_cast<std::size_t>(zone)] =
+          std::max(out.zone_max_height[static_cast<std::size_t>(zone)], z.max_height);
+    }
+    if (obj.side != HullSide::kNone)
+      ++out.zone_objects[static_cast<std::size_t>(HullFrame::ZoneIndex(obj.station, obj.side))];
+    out.objects.push_back(std::move(obj));
+  }
+  return out;
+}
+
+}  // namespace hull

@@ -1,0 +1,217 @@
+#include "mapping/mapper.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <mutex>
+#include <optional>
+
+#include "geometry/mesh_index.h"
+#include "geometry/point_index.h"
+#include "mapping/detected_objects.h"
+#include "mapping/fouling.h"
+#include "mapping/hull_zones.h"
+#include "mapping/inspection.h"
+#include "mapping/mesh_refinement.h"
+#include "mapping/point_cone_tree.h"
+#include "mapping/refinement_region.h"
+#include "mapping/shape_detection.h"
+#include "mapping/shape_fusion.h"
+
+namespace hull {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct ShapeKey {
+  double tau, alpha, eps;
+  int min_points;
+  bool operator==(const ShapeKey& o) const {
+    return tau == o.tau && alpha == o.alpha && eps == o.eps && min_points == o.min_points;
+  }
+};
+
+struct InspectionKey {
+  int stations;
+  double bottom_angle, spacing, range;
+  bool operator==(const InspectionKey& o) const {
+    return stations == o.stations && bottom_angle == o.bottom_angle && spacing == o.spacing && range == o.range;
+  }
+};
+
+// The refined mesh with the structures built over it.
+struct Refined {
+  RefinedMesh refined;
+  std::unique_ptr<PointConeTree> tree;
+  std::unique_ptr<PointIndex> index;
+};
+
+}  // namespace
+
+struct Mapper::Impl {
+  MappingInput input;
+  TriangleMesh cad;
+  std::unique_ptr<MeshIndex> cad_index;
+  std::vector<Pose> x_M_cT;
+  std::mutex mutex;
+  int refinements = 0;
+
+  std::optional<ShapeKey> shape_key;
+  std::vector<KeyframeShapes> shapes;
+  std::unique_ptr<Refined> refined;
+  std::optional<InspectionKey> inspection_key;
+  HullFrame hull;
+  InspectionCoverage inspection;
+
+  MappingResult Run(const MappingOptions& o, Progress& progress);
+};
+
+Mapper::Mapper(MappingInput input, TriangleMesh cad) : impl_(std::make_unique<Impl>()) {
+  impl_->input = std::move(input);
+  impl_->cad = std::move(cad);
+  impl_->cad.vertex_scalars.clear();
+  impl_->cad.ComputeNormals();
+  impl_->cad_index = std::make_unique<MeshIndex>(impl_->cad);
+  const Pose x_Mg = impl_->input.x_gM.Inverse();
+  for (const auto& k : impl_->input.keyframes) impl_->x_M_cT.push_back(x_Mg * k.x_g_cT);
+}
+
+Mapper::~Mapper() = default;
+
+const MappingInput& Mapper::input() const { return impl_->input; }
+const TriangleMesh& Mapper::cad() const { return impl_->cad; }
+int Mapper::refinements() const { return impl_->refinements; }
+const TriangleMesh* Mapper::prior_mesh() const { return impl_->refined ? &impl_->refined->refined.mesh : nullptr; }
+
+MappingResult Mapper::Run(const MappingOptions& options, Progress& progress) {
+  options.Check();
+  std::lock_guard<std::mutex> lock(impl_->mutex);
+  tbb::task_arena arena(options.num_threads > 0 ? options.num_threads : tbb::task_arena::automatic);
+  MappingResult result;
+  arena.execute([&] { result = impl_->Run(options, progress); });
+  return result;
+}
+
+MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
+  const auto start = Clock::now();
+  MappingResult r;
+  r.options = o;
+  MappingSummary& s = r.summary;
+  s.source = input.source;
+
+  // Algorithm 1 per keyframe.
+  auto t = Clock::now();
+  progress.Update(0.0, "detecting shapes (Algorithm 1)");
+  const ShapeKey sk{o.tau, o.alpha, o.dbscan_eps, o.dbscan_min_points};
+  if (!shape_key || !(*shape_key == sk)) {
+    shape_key.reset();
+    shapes = DetectAllShapes(input, o, progress);
+    shape_key = sk;
+  }
+  s.seconds.shapes = Since(t);
+
+  // The region where shapes depart from the CAD, and the mesh refined there.
+  t = Clock::now();
+  progress.Update(0.2, "finding where the shapes depart from the model");
+  SubProgress region_progress(progress, 0.2, 0.3);
+  const RefinementRegion region = DepartureRegion(shapes, x_M_cT, *cad_index, o, region_progress);
+  s.seconds.region = Since(t);
+  t = Clock::now();
+  const bool same_edge = refined && refined->refined.edge == o.refine_edge;
+  if (same_edge && refined->refined.region.Includes(region)) {
+    s.refinement_reused = true;
+  } else {
+    progress.Update(0.3, "refining the model where shapes depart from it");
+    RefinementRegion grown = region;
+    if (same_edge) grown.Merge(refined->refined.region);
+    auto next = std::make_unique<Refined>();
+    next->refined = RefineMesh(cad, *cad_index, grown, o.refine_edge);
+    next->tree = std::make_unique<PointConeTree>(next->refined.mesh.vertices);
+    next->index = std::make_unique<PointIndex>(next->refined.mesh.vertices);
+    refined = std::move(next);
+    ++refinements;
+    progress.ThrowIfCancelled();
+  }
+  s.seconds.refinement = Since(t);
+  const TriangleMesh& prior = refined->refined.mesh;
+  s.region_cells = refined->refined.region.num_cells();
+  s.refined_area = refined->refined.refined_area;
+
+  // Algorithm 2.
+  t = Clock::now();
+  progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
+  SubProgress fusion_progress(progress, 0.5, 0.8);
+  const FusionResult fused = FuseShapes(prior, *refined->tree, x_M_cT, shapes, o.fusion_radius, fusion_progress);
+  s.seconds.fusion = Since(t);
+
+  // Each fused vertex's signed deviation from the CAD surface.
+  t = Clock::now();
+  progress.Update(0.8, "measuring the fused model's deviation from the CAD");
+  std::vector<double> deviation(prior.num_vertices(), 0.0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, prior.num_vertices(), 1024),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        if (fused.count[i] > 0) deviation[i] = cad_index->SignedDistance(fused.vertices[i]);
+                      }
+                    });
+  r.model.vertices = fused.vertices;
+  r.model.faces = prior.faces;
+  r.model.ComputeNormals();
+  r.model.SetScalar("deviation", deviation);
+  r.model.SetScalar("fusions", std::vector<double>(fused.count.begin(), fused.count.end()));
+  s.seconds.deviation = Since(t);
+  progress.ThrowIfCancelled();
+
+  // The inspected area (cached).
+  t = Clock::now();
+  const InspectionKey ik{o.stations, o.bottom_angle_deg, o.inspection_spacing, o.inspection_range};
+  if (!inspection_key || !(*inspection_key == ik)) {
+    progress.Update(0.85, "measuring the inspected area");
+    inspection_key.reset();
+    hull = MakeHullFrame(cad, input.model_axes, input.x_gM, o.stations, o.bottom_angle_deg);
+    SubProgress inspection_progress(progress, 0.85, 0.95);
+    inspection = MeasureInspection(cad, *cad_index, hull, x_M_cT, input.camera, o.inspection_spacing,
+                                   o.inspection_range, inspection_progress);
+    inspection_key = ik;
+  }
+  s.seconds.inspection = Since(t);
+
+  // Objects and the assessment.
+  t = Clock::now();
+  progress.Update(0.95, "detecting objects and rating the zones");
+  ObjectDetection objects = DetectObjects(prior, deviation, *refined->index, *cad_index, hull, input, shapes, o);
+  r.zones = AssessFouling(hull, inspection, objects);
+  r.objects = std::move(objects.objects);
+  s.seconds.objects = Since(t);
+
+  r.hull = hull;
+  r.keyframes = shapes;
+  s.keyframes = shapes.size();
+  for (const auto& k : shapes) {
+    s.points += k.points.size();
+    for (const auto& p : k.points) s.points_clustered += p.cluster != ShapePoint::kBelowTau;
+    s.shapes += k.shapes.size();
+    if (!k.shapes.empty()) ++s.keyframes_with_shapes;
+    for (const auto& sh : k.shapes) s.shape_triangles += sh.triangles.size();
+  }
+  s.model_vertices = r.model.num_vertices();
+  s.model_faces = r.model.num_faces();
+  for (const int c : fused.count) s.vertices_fused += c > 0;
+  s.fusion_hits = fused.hits;
+  s.hull_area = inspection.total_hull_area;
+  s.inspected_area = inspection.total_inspected_area;
+  for (const auto& z : r.zones) s.covered_area += z.covered_area;
+  s.seconds.total = Since(start);
+  progress.Update(1.0, "mapped: " + std::to_string(r.objects.size()) + " objects");
+  return r;
+}
+
+MappingResult RunMapping(MappingInput input, TriangleMesh cad, const MappingOptions& options, Progress& progress) {
+  Mapper mapper(std::move(input), std::move(cad));
+  return mapper.Run(options, progress);
+}
+
+}  // namespace hull
