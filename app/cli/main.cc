@@ -25,6 +25,7 @@ const Command kCommands[] = {
     {"align", hull::cli::RunAlign, "initial model pose: align DVL returns to the mesh (GICP)"},
     {"run", hull::cli::RunPipeline, "the whole pipeline without a display (alignment, adjustment, mapping)"},
     {"adjust", hull::cli::RunAdjust, "model-assisted bundle adjustment (naive, all-on-surface, max-mixture)"},
+    {"map", hull::cli::RunMap, "shapes of foreign structure, remeshed hull, fouling assessment"},
     {"sonar", hull::cli::RunSonar, "reconstruct features from an acoustic sequence with the sonar EKF"},
 };
 

@@ -1,0 +1,119 @@
+// hullinspect-cli map: model-assisted mapping of an adjusted survey.
+#include <cstdio>
+#include <filesystem>
+
+#include "adjust/adjust_result.h"
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/console_progress.h"
+#include "geometry/mesh_io.h"
+#include "mapping/mapper.h"
+#include "survey/survey_io.h"
+
+namespace hull::cli {
+namespace {
+
+const char* kHelp = R"(usage: hullinspect-cli map RESULTS [--out DIR] [options]
+
+Model-assisted mapping (Ozog et al., Section 3) of an adjusted survey: shapes
+of foreign structure per keyframe (DBSCAN and alpha shapes), fused into a
+locally remeshed copy of the CAD model, detected objects, and the fouling
+assessment per hull zone with the IMO MEPC.378(80) rating. RESULTS is the
+folder 'hullinspect-cli adjust' wrote; its adjustment.json names the survey
+bundle and the mesh. Writes the mapping results (docs/results-format.md).
+
+options:
+  --out DIR            output folder (default: RESULTS/mapping)
+  --tau M              cluster features with |deviation| > M (default 0)
+  --alpha M            alpha-shape radius (default 0.12)
+  --eps M              DBSCAN neighbourhood radius (default 0.10)
+  --min-points N       DBSCAN core-point count, the point included (default 3)
+  --h-min M            objects: minimum height (default 0.03)
+  --min-area M2        objects: minimum footprint area (default 0.01)
+  --refine-edge M      edge length of the refined model (default 0.03)
+  --fusion-radius M    fuse vertices within M of the camera (default 5)
+  --stations N         stations along the hull (default 20)
+  --bundle DIR         survey bundle (default: the one adjustment.json names)
+  --mesh PATH          prior mesh (default: the one adjustment.json names)
+  --mesh-scale S       scale applied to --mesh on load (default: the recorded one)
+  --threads N          0: all cores (default)
+  --quiet              no progress output
+See docs/mapping.md for what the parameters do.
+)";
+
+}  // namespace
+
+int RunMap(const CommandArgs& argv) {
+  Args a(argv, {"quiet", "help"});
+  if (a.Has("help")) {
+    std::fputs(kHelp, stdout);
+    return kExitOk;
+  }
+  a.AllowOnly({"out", "tau", "alpha", "eps", "min-points", "h-min", "min-area", "refine-edge", "fusion-radius",
+               "stations", "bundle", "mesh", "mesh-scale", "threads", "quiet"});
+  if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
+  const std::string results = a.positionals()[0];
+  const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
+  MappingOptions o;
+  o.tau = a.GetDouble("tau", o.tau);
+  o.alpha = a.GetDouble("alpha", o.alpha);
+  o.dbscan_eps = a.GetDouble("eps", o.dbscan_eps);
+  o.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.dbscan_min_points));
+  o.object_min_height = a.GetDouble("h-min", o.object_min_height);
+  o.object_min_area = a.GetDouble("min-area", o.object_min_area);
+  o.refine_edge = a.GetDouble("refine-edge", o.refine_edge);
+  o.fusion_radius = a.GetDouble("fusion-radius", o.fusion_radius);
+  o.stations = static_cast<int>(a.GetInt("stations", o.stations));
+  o.num_threads = static_cast<int>(a.GetInt("threads", 0));
+  o.Check();
+
+  const AdjustmentResult adjustment = ReadAdjustmentResult(results);
+  const std::string bundle_path = a.Get("bundle", adjustment.bundle_path);
+  if (bundle_path.empty()) throw UsageError("adjustment.json names no survey bundle: give --bundle");
+  const SurveyBundle bundle = ReadSurveyBundle(bundle_path);
+  const std::string mesh_path = a.Get("mesh", adjustment.mesh_path);
+  if (mesh_path.empty()) throw UsageError("adjustment.json names no mesh: give --mesh");
+  MeshLoadOptions lo;
+  lo.scale = a.GetDouble("mesh-scale", a.Has("mesh") ? 1.0 : adjustment.mesh_scale);
+  TriangleMesh cad = LoadMesh(mesh_path, lo);
+
+  ConsoleProgress progress(a.Has("quiet"));
+  MappingResult r = RunMapping(MappingInputFromAdjustment(adjustment, bundle), std::move(cad), o, progress);
+  progress.Finish();
+  namespace fs = std::filesystem;
+  r.inputs = {{"adjustment", fs::absolute(results).string()},
+              {"bundle", fs::absolute(bundle_path).string()},
+              {"mesh", fs::absolute(mesh_path).string()}};
+  WriteMappingResult(r, out);
+
+  const MappingSummary& s = r.summary;
+  std::printf("%zu keyframes: %zu shapes (%zu triangles) from %zu of %zu features with |d| > %.3g m\n", s.keyframes,
+              s.shapes, s.shape_triangles, s.points_clustered, s.points, o.tau);
+  std::printf("model: %zu vertices, %zu faces (%.2f m^2 refined to %.3g m edges), %zu vertices fused\n",
+              s.model_vertices, s.model_faces, s.refined_area, o.refine_edge, s.vertices_fused);
+  std::printf("%zu objects (h > %.3g m over >= %.3g m^2):\n", r.objects.size(), o.object_min_height, o.object_min_area);
+  for (const auto& obj : r.objects) {
+    std::printf(
+        "  %-7s %7.2f m from the bow, station %2d %-9s  %.3f m^2, height mean %.3f max %.3f m, %d features, "
+        "%d views\n",
+        obj.id.c_str(), obj.distance_from_bow, obj.station, HullSideName(obj.side), obj.area, obj.mean_height,
+        obj.max_height, obj.num_features, obj.num_views);
+  }
+  int inspected = 0, fouled = 0;
+  for (const auto& z : r.zones) {
+    if (z.rating == FoulingRating::kUninspected) continue;
+    ++inspected;
+    if (z.rating != FoulingRating::kZeroToOne) {
+      ++fouled;
+      std::printf("  zone station %2d %-9s rating %s: %.1f %% of %.1f m^2 inspected covered\n", z.station,
+                  HullSideName(z.side), FoulingRatingName(z.rating), z.cover_percent, z.inspected_area);
+    }
+  }
+  std::printf("zones: %d inspected (%.1f of %.1f m^2), %d with macrofouling, %zu uninspected\n", inspected,
+              s.inspected_area, s.hull_area, fouled, r.zones.size() - static_cast<std::size_t>(inspected));
+  std::printf("%.2f s (shapes %.2f, refinement %.2f, fusion %.2f, inspection %.2f)\nwrote %s\n", s.seconds.total,
+              s.seconds.shapes, s.seconds.refinement, s.seconds.fusion, s.seconds.inspection, out.c_str());
+  return kExitOk;
+}
+
+}  // namespace hull::cli
