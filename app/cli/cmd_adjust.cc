@@ -49,7 +49,8 @@ int RunAdjust(const CommandArgs& argv) {
     return kExitOk;
   }
   a.AllowOnly({"mesh", "mesh-scale", "model", "sigma0", "sigma1", "lookup", "max-iterations", "function-tolerance",
-               "threads", "no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate", "verbose", "quiet", "out"});
+               "linear-solver", "threads", "no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate", "verbose",
+               "quiet", "out"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");

@@ -55,9 +55,7 @@ double FractionOnSurface(const State& s, const MeshIndex& index, const Adjustmen
   int on = 0;
   for (std::size_t i = 0; i < s.landmark.size(); ++i) {
     const Eigen::Vector3d l(s.landmark[i][0], s.landmark[i][1], s.landmark[i][2]);
-    const SurfaceDistance sd = index.OrthogonalSignedDistance(x_gM, l, o.lookup, (*hints)[i]);
-    (*hints)[i] = sd.face;
-    on += MaxMixtureLabel(sd.signed_distance, o.sigma0, o.sigma1);
+    on += MaxMixtureLabel(adjust::SurfaceDeviation(index, x_gM, l, o.lookup, &(*hints)[i]), o.sigma0, o.sigma1);
   }
   return static_cast<double>(on) / static_cast<double>(s.landmark.size());
 }
@@ -513,7 +511,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     LandmarkEstimate e;
     e.id = s.landmark_id[i];
     e.p = {s.landmark[i][0], s.landmark[i][1], s.landmark[i][2]};
-    e.deviation = index.OrthogonalSignedDistance(x_gM, e.p, o.lookup).signed_distance;
+    e.deviation = adjust::SurfaceDeviation(index, x_gM, e.p, o.lookup);
     e.label = MaxMixtureLabel(e.deviation, o.sigma0, o.sigma1);
     e.observations = s.landmark_views[i];
     result.landmarks.push_back(e);

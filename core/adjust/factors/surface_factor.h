@@ -2,7 +2,8 @@
 //   h(x_gM, l) = (H l - p)^T n / |n|,   H = (-)x_gM (maps g into M),
 // with p the closest point of the prior mesh and n the outward normal of its
 // face, looked up afresh at every evaluation (data association per
-// iteration) and held constant for the derivative. Measurement z = 0.
+// iteration) and held constant for the derivative (see SurfaceDirection for
+// points beyond a face's edge). Measurement z = 0.
 //
 //   all-on-surface:  r = h / sigma1                       (every lambda = 1)
 //   max-mixture:     p(z|X) = eta max_lambda N(h; 0, sigma_lambda^2), equal weights.
@@ -25,6 +26,30 @@
 
 namespace hull::adjust {
 
+// The direction along which h is measured for a point q (in M) whose
+// closest point on the mesh is sd.point: the outward normal of its face
+// (eq. 5) when q lies over the face's interior; where the closest point is on
+// an edge or a vertex of the face (q beyond the face's boundary), the unit
+// direction from it to q, signed by the face normal -- the limit of eq. 5 from
+// every face that meets there, so h stays continuous instead of jumping
+// between the planes of faces meeting at a sharp edge.
+inline Eigen::Vector3d SurfaceDirection(const SurfaceDistance& sd, const Eigen::Vector3d& q) {
+  const Eigen::Vector3d d = q - sd.point;
+  const double along = d.dot(sd.normal);
+  const Eigen::Vector3d tangential = d - along * sd.normal;
+  if (tangential.norm() > 1e-6 + 1e-3 * d.norm()) return (along >= 0 ? 1.0 : -1.0) * d.normalized();
+  return sd.normal;
+}
+
+// h(x_gM, l) for plain doubles, as the factor evaluates it.
+inline double SurfaceDeviation(const MeshIndex& mesh, const Pose& x_gM, const Eigen::Vector3d& l_g,
+                               SurfaceLookup lookup, int* hint = nullptr) {
+  const Eigen::Vector3d q = x_gM.Inverse() * l_g;
+  const SurfaceDistance sd = mesh.OrthogonalSignedDistance(q, lookup, hint ? *hint : -1);
+  if (hint) *hint = sd.face;
+  return SurfaceDirection(sd, q).dot(q - sd.point);
+}
+
 class SurfaceFactor {
  public:
   // model_offset: x_CM, with the model pose block holding x_gC (x_gM = x_gC (+) x_CM).
@@ -45,7 +70,8 @@ class SurfaceFactor {
     const SurfaceDistance sd =
         mesh_->OrthogonalSignedDistance(ScalarOf(lM), lookup_, hint_.load(std::memory_order_relaxed));
     hint_.store(sd.face, std::memory_order_relaxed);
-    const T h = sd.normal.cast<T>().dot(lM - sd.point.cast<T>());
+    const Eigen::Vector3d dir = SurfaceDirection(sd, ScalarOf(lM));
+    const T h = dir.cast<T>().dot(lM - sd.point.cast<T>());
     if (!max_mixture_ || MaxMixtureLabel(ScalarOf(h), sigma0_, sigma1_) == 1) {
       residual[0] = h / T(sigma1_);
       residual[1] = T(0);

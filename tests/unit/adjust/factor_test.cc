@@ -240,5 +240,27 @@ TEST_F(Factors, SurfaceConstraintBothModels) {
   }
 }
 
+TEST_F(Factors, SurfaceDeviationIsContinuousAroundEdges) {
+  // A point circling a box's edge at 3 cm: h stays 3 cm (eq. 5 with one
+  // face's plane would jump where the closest face changes).
+  const TriangleMesh box = test::MakeBox({0, 0, 0}, {1, 1, 1});
+  const MeshIndex index(box);
+  double prev = std::nan("");
+  for (int k = 0; k <= 90; ++k) {
+    const double a = (-10 + 1.2 * k) * M_PI / 180.0;  // from under the top face over the edge to beside the side face
+    const Eigen::Vector3d q(1 + 0.03 * std::sin(a), 0.5, 1 + 0.03 * std::cos(a));
+    const double h = SurfaceDeviation(index, Pose(), q, SurfaceLookup::kClosestFace);
+    if (q.x() > 1 && q.z() > 1) {
+      EXPECT_NEAR(h, 0.03, 1e-9);
+    }
+    if (!std::isnan(prev)) {
+      EXPECT_LT(std::abs(h - prev), 2e-3);
+    }
+    prev = h;
+  }
+  // Inside, near the edge: negative.
+  EXPECT_LT(SurfaceDeviation(index, Pose(), {0.99, 0.5, 0.98}, SurfaceLookup::kClosestFace), 0.0);
+}
+
 }  // namespace
 }  // namespace hull::adjust
