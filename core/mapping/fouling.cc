@@ -1,6 +1,7 @@
 #include "mapping/fouling.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace hull {
 
@@ -69,7 +70,7 @@ std::vector<ZoneAssessment> AssessFouling(const HullFrame& hull, const Inspectio
         }
         const double seen = a.inspected_area / a.hull_area;
         if (seen < 0.5) {
-          a.note += "; only " + std::to_string(static_cast<int>(100 * seen + 0.5)) + " % of the zone inspected";
+          a.note += "; only " + std::to_string(std::lround(100 * seen)) + " % of the zone inspected";
         }
       }
       out.push_back(std::move(a));

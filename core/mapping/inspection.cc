@@ -62,6 +62,7 @@ InspectionCoverage MeasureInspection(const TriangleMesh& cad, const MeshIndex& c
   // Samples on the faces within reach of some camera: sub-triangle centroids
   // of an m x m barycentric subdivision, each standing for area / m^2.
   std::vector<Eigen::Vector3d> centres;
+  centres.reserve(x_M_cT.size());
   for (const auto& c : x_M_cT) centres.push_back(c.translation());
   const PointIndex cameras(std::move(centres));
   std::vector<Eigen::Vector3d> pos;
@@ -113,7 +114,7 @@ InspectionCoverage MeasureInspection(const TriangleMesh& cad, const MeshIndex& c
         for (std::size_t kf = r.begin(); kf != r.end(); ++kf) {
           const Pose& cam = x_M_cT[kf];
           const Pose inv = cam.Inverse();
-          const Eigen::Vector3d c = cam.translation();
+          const Eigen::Vector3d& c = cam.translation();
           tree.Query(
               c, range, cam.Rotate(Eigen::Vector3d::UnitZ()), std::cos(half), std::sin(half), narrow, [&](int i) {
                 if (seen[static_cast<std::size_t>(i)].load(std::memory_order_relaxed)) return;

@@ -112,8 +112,9 @@ ShapeFootprint::ShapeFootprint(const DetectedShape& shape) : shape_(shape) {
       range(boxes[static_cast<std::size_t>(i)], x0, x1, y0, y1);
       for (int y = y0; y <= y1; ++y) {
         for (int x = x0; x <= x1; ++x) {
-          const int c = y * nx_ + x;
-          if (pass == 1) tri_[static_cast<std::size_t>(cell_start_[c] + count[c])] = i;
+          const std::size_t c =
+              static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(x);
+          if (pass == 1) tri_[static_cast<std::size_t>(cell_start_[c]) + static_cast<std::size_t>(count[c])] = i;
           ++count[c];
         }
       }
