@@ -32,9 +32,14 @@ std::string ReadFileToString(const std::string& path) {
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError({path, 0, 0, ""}, std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0, 0, ""}, std::string("cannot open: ") + std::strerror(errno));
-  std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw InputError({path, 0, 0, ""}, std::string("cannot open: ") + std::strerror(errno));
+  std::string raw;
+  raw.resize(static_cast<std::size_t>(std::filesystem::file_size(path, ec)));
+  const std::size_t got = raw.empty() ? 0 : std::fread(raw.data(), 1, raw.size(), f);
+  const bool failed = std::ferror(f) != 0;
+  std::fclose(f);
+  if (failed || got != raw.size()) throw InputError({path, 0, 0, ""}, "read error");
   const bool gz =
       raw.size() >= 2 && static_cast<unsigned char>(raw[0]) == 0x1f && static_cast<unsigned char>(raw[1]) == 0x8b;
   if (!gz) return raw;

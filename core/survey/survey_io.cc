@@ -404,6 +404,7 @@ void ReadFeatures(const std::string& dir, SurveyBundle& b, const std::unordered_
   std::unordered_set<std::uint64_t> seen;
   std::size_t warned_outside = 0;
   b.features.reserve(text.size() / 40);
+  seen.reserve(text.size() / 40);
   ForEachRecord(
       text, name, diag,
       [&](const CsvReader& r) {
