@@ -16,6 +16,7 @@ const char* kHelp = R"(usage: hullinspect-cli run BUNDLE --out DIR [options]
 
 The whole model-assisted pipeline without a display: the initial model pose
 (GICP of the DVL returns to the mesh), the model-assisted bundle adjustment,
+the mapping (shapes, remeshed hull with deviations, objects, fouling zones)
 and the results in DIR. --demo first simulates the embedded demo survey into
 DIR/demo-survey and runs on it.
 
@@ -25,6 +26,7 @@ options:
   --model NAME         max-mixture (default), all-on-surface or naive
   --sigma0 M --sigma1 M
   --compare-models     also run the two other surface models
+  --tau M --alpha M --eps M --min-points N   mapping (see 'map --help')
   --max-iterations N   --threads N
   --quiet
 )";
@@ -37,8 +39,8 @@ int RunPipeline(const CommandArgs& argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"demo", "mesh", "mesh-scale", "model", "sigma0", "sigma1", "compare-models", "max-iterations", "threads",
-               "quiet", "out"});
+  a.AllowOnly({"demo", "mesh", "mesh-scale", "model", "sigma0", "sigma1", "compare-models", "tau", "alpha", "eps",
+               "min-points", "max-iterations", "threads", "quiet", "out"});
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
   ConsoleProgress progress(a.Has("quiet"));
@@ -59,6 +61,10 @@ int RunPipeline(const CommandArgs& argv) {
   o.adjustment.max_iterations = static_cast<int>(a.GetInt("max-iterations", o.adjustment.max_iterations));
   o.adjustment.num_threads = static_cast<int>(a.GetInt("threads", 0));
   o.compare_models = a.Has("compare-models");
+  o.mapping.tau = a.GetDouble("tau", o.mapping.tau);
+  o.mapping.alpha = a.GetDouble("alpha", o.mapping.alpha);
+  o.mapping.dbscan_eps = a.GetDouble("eps", o.mapping.dbscan_eps);
+  o.mapping.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.mapping.dbscan_min_points));
   o.Check();
   const PipelineInputs in = LoadPipelineInputs(bundle_dir, a.Get("mesh", ""), a.GetDouble("mesh-scale", 1.0));
   SubProgress p(progress, a.Has("demo") ? 0.05 : 0.0, 1.0);
@@ -71,6 +77,10 @@ int RunPipeline(const CommandArgs& argv) {
               SurfaceModelName(r.adjustment.options.model), r.adjustment.landmarks.size(),
               100 * r.adjustment.FractionOnSurface(), r.adjustment.seconds, r.adjustment.termination.c_str());
   if (r.evaluation) std::printf("%s", r.evaluation->ToString().c_str());
+  if (r.mapping) {
+    std::printf("mapping: %zu shapes, %zu objects detected; remeshed model %s\n", r.mapping->summary.shapes,
+                r.mapping->objects.size(), (std::filesystem::path(out) / "mapping" / "model.ply").c_str());
+  }
   std::printf("wrote %s\n", out.c_str());
   return kExitOk;
 }

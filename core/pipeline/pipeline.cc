@@ -6,6 +6,8 @@
 #include "base/file_io.h"
 #include "base/json.h"
 #include "geometry/mesh_io.h"
+#include "mapping/mapper.h"
+#include "mapping/mapping_input.h"
 #include "survey/survey_io.h"
 
 namespace hull {
@@ -31,6 +33,7 @@ PipelineInputs LoadPipelineInputs(const std::string& bundle_dir, const std::stri
 void PipelineOptions::Check() const {
   alignment.Check();
   adjustment.Check();
+  mapping.Check();
 }
 
 ModelAlignment RunAlignment(const PipelineInputs& in, const PipelineOptions& o, Progress& progress) {
@@ -46,6 +49,14 @@ AdjustmentResult RunAdjustmentStep(const PipelineInputs& in, const Pose& x_gM_in
   return r;
 }
 
+MappingResult RunMappingStep(const PipelineInputs& in, const AdjustmentResult& adjustment,
+                             const MappingOptions& options, Progress& progress) {
+  MappingResult m = RunMapping(MappingInputFromAdjustment(adjustment, in.bundle), in.mesh, options, progress);
+  m.inputs.emplace_back("bundle", in.bundle_path);
+  m.inputs.emplace_back("mesh", in.mesh_path);
+  return m;
+}
+
 PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& o, Progress& progress) {
   o.Check();
   PipelineResult r;
@@ -53,9 +64,12 @@ PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& o, P
     SubProgress p(progress, 0.0, 0.1);
     r.alignment = RunAlignment(in, o, p);
   }
+  // Progress shares: alignment 10 %, the adjustments, mapping 20 %.
   const int runs = o.compare_models ? 3 : 1;
+  const double adjust_end = o.run_mapping ? 0.8 : 1.0;
+  const double share = (adjust_end - 0.1) / runs;
   {
-    SubProgress p(progress, 0.1, o.compare_models ? 0.4 : 1.0);
+    SubProgress p(progress, 0.1, 0.1 + share);
     r.adjustment = RunAdjustmentStep(in, r.alignment.x_gM, o.adjustment, p);
   }
   if (in.bundle.truth) r.evaluation = EvaluateAdjustment(in.bundle, in.mesh, r.adjustment);
@@ -65,11 +79,15 @@ PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& o, P
       if (m == o.adjustment.model) continue;
       AdjustmentOptions b = o.adjustment;
       b.model = m;
-      SubProgress p(progress, 0.1 + 0.9 * k / runs, 0.1 + 0.9 * (k + 1) / runs);
+      SubProgress p(progress, 0.1 + share * k, 0.1 + share * (k + 1));
       r.baselines.push_back(RunAdjustmentStep(in, r.alignment.x_gM, b, p));
       if (in.bundle.truth) r.baseline_evaluations.push_back(EvaluateAdjustment(in.bundle, in.mesh, r.baselines.back()));
       ++k;
     }
+  }
+  if (o.run_mapping) {
+    SubProgress p(progress, adjust_end, 1.0);
+    r.mapping = RunMappingStep(in, r.adjustment, o.mapping, p);
   }
   progress.Update(1.0, "pipeline done");
   return r;
@@ -105,6 +123,7 @@ void WritePipelineResult(const PipelineInputs& in, const PipelineResult& r, cons
     WriteAdjustmentResult(b,
                           (fs::path(dir) / ("adjustment-" + std::string(SurfaceModelName(b.options.model)))).string());
   }
+  if (r.mapping) WriteMappingResult(*r.mapping, (fs::path(dir) / "mapping").string());
   std::string eval;
   if (r.evaluation) {
     eval += std::string(SurfaceModelName(r.adjustment.options.model)) + ":\n" + r.evaluation->ToString();
@@ -125,6 +144,12 @@ void WritePipelineResult(const PipelineInputs& in, const PipelineResult& r, cons
   s.Set("fraction_on_surface", r.adjustment.FractionOnSurface());
   s.Set("adjustment_seconds", r.adjustment.seconds);
   s.Set("converged", r.adjustment.converged);
+  if (r.mapping) {
+    s.Set("objects", static_cast<std::int64_t>(r.mapping->objects.size()));
+    s.Set("remeshed_model", (fs::path(dir) / "mapping" / "model.ply").string());
+    s.Set("inspected_area", r.mapping->summary.inspected_area);
+    s.Set("covered_area", r.mapping->summary.covered_area);
+  }
   WriteFileAtomic((fs::path(dir) / "summary.json").string(), s.Dump());
 }
 

@@ -1,5 +1,6 @@
 // The end-to-end job: survey bundle + prior mesh -> initial alignment (GICP
-// of the DVL returns) -> model-assisted bundle adjustment -> results on disk.
+// of the DVL returns) -> model-assisted bundle adjustment -> model-assisted
+// mapping (shapes, remeshed hull, objects, fouling assessment) -> results on disk.
 // Qt-free; the GUI runs the same steps in worker threads, one at a time, and
 // the CLI's `run` command (the headless main job) runs them in a row.
 #pragma once
@@ -12,6 +13,8 @@
 #include "adjust/evaluation.h"
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
+#include "mapping/mapping_options.h"
+#include "mapping/mapping_result.h"
 #include "registration/model_alignment.h"
 #include "survey/survey.h"
 
@@ -37,6 +40,8 @@ struct PipelineOptions {
   AdjustmentOptions adjustment;
   // Also run the two baselines (naive, all-on-surface) for comparison.
   bool compare_models = false;
+  MappingOptions mapping;
+  bool run_mapping = true;
 
   void Check() const;  // throws OptionError
 };
@@ -47,6 +52,7 @@ struct PipelineResult {
   std::vector<AdjustmentResult> baselines;         // compare_models: the other two models
   std::optional<AdjustmentEvaluation> evaluation;  // when the bundle has truth
   std::vector<AdjustmentEvaluation> baseline_evaluations;
+  std::optional<MappingResult> mapping;  // of the chosen model's adjustment
 };
 
 // Step 1: the initial model pose.
@@ -54,11 +60,15 @@ ModelAlignment RunAlignment(const PipelineInputs& in, const PipelineOptions& opt
 // Step 2: adjustment from an alignment (warm: optional previous result).
 AdjustmentResult RunAdjustmentStep(const PipelineInputs& in, const Pose& x_gM_initial, const AdjustmentOptions& options,
                                    Progress& progress, const AdjustmentResult* warm = nullptr);
+// Step 3: mapping of an adjustment (one run; the GUI keeps a Mapper instead).
+MappingResult RunMappingStep(const PipelineInputs& in, const AdjustmentResult& adjustment,
+                             const MappingOptions& options, Progress& progress);
 // All steps.
 PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& options, Progress& progress);
 
 // Writes DIR/alignment.json, DIR/adjustment/ (and DIR/adjustment-<model>/
-// for the baselines), DIR/evaluation.txt with truth, and DIR/summary.json.
+// for the baselines), DIR/mapping/ (remeshed model PLY/OBJ/STL, objects and
+// zones CSV/JSON), DIR/evaluation.txt with truth, and DIR/summary.json.
 void WritePipelineResult(const PipelineInputs& in, const PipelineResult& result, const std::string& dir);
 
 }  // namespace hull
