@@ -1,0 +1,52 @@
+// What a report is made of: the survey and its prior mesh, the pipeline's
+// results (alignment, adjustment, the baselines when the models were
+// compared, the evaluation against truth) and, when it ran, mapping's
+// (the fused model, detected objects, the fouling assessment per zone).
+// Qt-free; the GUI fills it from its session, the headless job from a run or
+// from a results folder (results_reader.h).
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "geometry/triangle_mesh.h"
+#include "mapping/mapping_result.h"
+#include "pipeline/pipeline.h"
+#include "survey/survey.h"
+
+namespace hull::report {
+
+struct ReportInputs {
+  std::shared_ptr<const SurveyBundle> bundle;      // required
+  std::shared_ptr<const TriangleMesh> cad;         // required: the prior (CAD) mesh in M
+  std::shared_ptr<const PipelineResult> pipeline;  // required
+  std::shared_ptr<const MappingResult> mapping;    // optional: without it the heatmap shows the landmarks
+  std::string bundle_path;                         // shown in the summary ("" : the bundle's directory)
+  std::string mesh_path;                           // shown in the summary
+  // Where the results came from or go to, shown in the summary ("" : not shown).
+  std::string results_path;
+  // Wall seconds of the whole run (pipeline and mapping) when known (0: not shown).
+  double run_seconds = 0;
+};
+
+// Throws std::invalid_argument naming the first required member missing.
+void CheckInputs(const ReportInputs& inputs);
+
+struct ReportOptions {
+  // The cross-section's slab: its centre in metres from the bow (NaN: through
+  // the detected object with the most features, or the middle of the
+  // surveyed stretch without mapping) and its width along the hull (m).
+  double slab_from_bow = std::nan("");
+  double slab_width = 0.30;
+  // Half-range of the deviation colour map (m; <= 0: from the data, at
+  // least 5 cm).
+  double deviation_range = 0;
+  // Figure images: width in pixels of the PNGs (the height follows each
+  // figure's aspect). The PDF draws the same figures as vectors.
+  int figure_width_px = 1600;
+  // Title; "" : "Hull inspection report" and the survey's name.
+  std::string title;
+};
+
+}  // namespace hull::report
