@@ -1,10 +1,15 @@
 // hullinspect: the desktop application. hullinspect [--demo] [MESH] [BUNDLE] [PROJECT.hiproj]
+// Without a display, `hullinspect --demo [--out DIR]` runs the headless main
+// job instead (as do --report RESULTS --out DIR and --demo --out DIR anywhere):
+// see ui/report/headless_job.h.
 #include <QApplication>
+#include <QGuiApplication>
 #include <cstdio>
 
 #include "ui/app_setup.h"
 #include "ui/command_line.h"
 #include "ui/main_window.h"
+#include "ui/report/headless_job.h"
 
 namespace {
 constexpr int kExitUsage = 2;  // as hullinspect-cli: bad command line, or no display to run on
@@ -13,6 +18,15 @@ constexpr int kExitUsage = 2;  // as hullinspect-cli: bad command line, or no di
 int main(int argc, char** argv) {
   QStringList arguments;
   for (int i = 1; i < argc; ++i) arguments << QString::fromLocal8Bit(argv[i]);
+  // The headless main job: no window, the report's figures drawn offscreen
+  // (QPainter, no VTK), so Qt needs no X server.
+  if (hull::report::IsBatchCommand(arguments) ||
+      (!hull::ui::HasDisplay() && arguments.contains(QStringLiteral("--demo")))) {
+    const hull::report::HeadlessCommand command = hull::report::ParseHeadlessCommand(arguments);
+    hull::report::PrepareHeadless();
+    QGuiApplication app(argc, argv);
+    return hull::report::RunHeadlessJob(command);
+  }
   const hull::ui::LaunchOptions options = hull::ui::ParseCommandLine(arguments);
   if (!options.error.isEmpty()) {
     std::fprintf(stderr, "hullinspect: %s\n\n%s", qPrintable(options.error), qPrintable(hull::ui::UsageText()));
@@ -29,6 +43,7 @@ int main(int argc, char** argv) {
   // Without a window system QApplication would abort; say what to run instead.
   if (!hull::ui::HasDisplay()) {
     std::fputs(qPrintable(hull::ui::HeadlessText()), stderr);
+    std::fputs(qPrintable(QStringLiteral("\n") + hull::report::HeadlessUsage()), stderr);
     return kExitUsage;
   }
 

@@ -1,0 +1,47 @@
+// hullinspect's headless main job, for machines without a display:
+//
+//   hullinspect --demo [--out DIR]          (DIR defaults to ./demo-output)
+//     simulates the embedded demo survey into DIR/demo-survey, runs the whole
+//     pipeline on it (alignment, the three surface models, mapping) and
+//     writes the results (WritePipelineResult's files and DIR/mapping/ with
+//     the remeshed model as PLY with deviation, OBJ and STL, objects and
+//     zones as CSV and JSON) and the report (DIR/report.html, report.pdf,
+//     DIR/figures/*.png);
+//   hullinspect --report RESULTS --out DIR
+//     writes the report again from a results folder (results_reader.h).
+//
+// Progress goes to stderr, the paths written to stdout. The caller creates a
+// QGuiApplication first, on the offscreen platform (PrepareHeadless()): the
+// report's figures are drawn with QPainter, never through VTK or X.
+#pragma once
+
+#include <QString>
+#include <QStringList>
+
+namespace hull::report {
+
+struct HeadlessCommand {
+  enum class Mode { kNone, kDemo, kReport };
+  Mode mode = Mode::kNone;
+  QString out;      // output folder
+  QString results;  // --report: the results folder
+  bool help = false;
+  QString error;  // non-empty: the command line is wrong (exit code 2)
+};
+
+// True when the arguments ask for the headless job whatever the display:
+// --report, or --demo with --out (a batch run). `hullinspect --demo` alone
+// opens the GUI when there is a display.
+bool IsBatchCommand(const QStringList& arguments);
+
+// Parses --demo, --report RESULTS, --out DIR, --help (without argv[0]).
+HeadlessCommand ParseHeadlessCommand(const QStringList& arguments);
+QString HeadlessUsage();
+
+// Sets QT_QPA_PLATFORM=offscreen for the QGuiApplication about to be made.
+void PrepareHeadless();
+
+// Runs the command; returns the process exit code (0 done, 1 failed, 2 usage).
+int RunHeadlessJob(const HeadlessCommand& command);
+
+}  // namespace hull::report
