@@ -16,6 +16,9 @@ PACKAGES=(
   # without a display, Mesa's software OpenGL, fonts, numpy for the
   # independent contract checker (../shared/tools/check-bundle.py)
   libgtest-dev libgmock-dev xvfb xauth libgl1-mesa-dri fonts-dejavu-core python3-numpy
+  # the report tests read the PDF back with an independent parser (pdfinfo),
+  # and pdftoppm turns its pages into PNGs to look at
+  poppler-utils
 )
 
 missing=()

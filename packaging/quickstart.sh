@@ -24,5 +24,7 @@ out="${HI_DEMO_OUT:-demo-output}"
 if [ -x "$build/bin/hullinspect" ] && { [ -n "${DISPLAY:-}" ] || [ -n "${WAYLAND_DISPLAY:-}" ]; }; then
   exec "$build/bin/hullinspect" --demo "$@"
 fi
-echo "quickstart: no display: running the headless pipeline on the demo survey into $out/"
-exec "$build/bin/hullinspect-cli" run --demo --out "$out" "$@"
+# No display: hullinspect's headless main job (the whole pipeline on the demo,
+# then the report with figures drawn offscreen; no X server needed).
+echo "quickstart: no display: running the headless main job on the demo survey into $out/"
+exec "$build/bin/hullinspect" --demo --out "$out"
