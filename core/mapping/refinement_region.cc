@@ -21,19 +21,26 @@ void Unpack(std::int64_t key, std::int64_t& i, std::int64_t& j, std::int64_t& k)
   k = (key & kMask) - kBias;
 }
 
+// The grid is shifted by an odd fraction of a cell on each axis, so that
+// the planes CAD models are full of (z = 0 for a flat bottom, x = 87 for a
+// station) do not lie on cell boundaries, where rounding at the level of
+// 1e-15 would pick the cell on one side or the other.
+constexpr double kShift[3] = {0.3183098861837907, 0.2718281828459045, 0.1414213562373095};
+
 }  // namespace
 
 std::int64_t RefinementRegion::Key(const Eigen::Vector3d& p) const {
-  return Pack(static_cast<std::int64_t>(std::floor(p.x() / cell_)),
-              static_cast<std::int64_t>(std::floor(p.y() / cell_)),
-              static_cast<std::int64_t>(std::floor(p.z() / cell_)));
+  std::int64_t ijk[3];
+  for (int a = 0; a < 3; ++a) ijk[a] = static_cast<std::int64_t>(std::floor(p[a] / cell_ + kShift[a]));
+  return Pack(ijk[0], ijk[1], ijk[2]);
 }
 
 Eigen::Vector3d RefinementRegion::Centre(std::int64_t key) const {
-  std::int64_t i, j, k;
-  Unpack(key, i, j, k);
-  return {(static_cast<double>(i) + 0.5) * cell_, (static_cast<double>(j) + 0.5) * cell_,
-          (static_cast<double>(k) + 0.5) * cell_};
+  std::int64_t ijk[3];
+  Unpack(key, ijk[0], ijk[1], ijk[2]);
+  Eigen::Vector3d c;
+  for (int a = 0; a < 3; ++a) c[a] = (static_cast<double>(ijk[a]) + 0.5 - kShift[a]) * cell_;
+  return c;
 }
 
 void RefinementRegion::Add(const Eigen::Vector3d& p) { cells_.insert(Key(p)); }

@@ -460,7 +460,7 @@ TEST(RefinementRegion, CellsDilationAndInclusion) {
   RefinementRegion a;
   a.Add(Eigen::Vector3d(0.01, 0.01, 0.01));
   EXPECT_EQ(a.num_cells(), 1u);
-  EXPECT_TRUE(a.Contains(Eigen::Vector3d(0.04, 0.001, 0.049)));
+  EXPECT_TRUE(a.Contains(Eigen::Vector3d(0.025, 0.001, 0.03)));
   EXPECT_FALSE(a.Contains(Eigen::Vector3d(0.06, 0.01, 0.01)));
   EXPECT_TRUE(a.Contains(Eigen::Vector3d(0.02, 0.02, 0.02)));
   RefinementRegion b = a;
