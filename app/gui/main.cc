@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   if (hull::report::IsBatchCommand(arguments) ||
       (!hull::ui::HasDisplay() && arguments.contains(QStringLiteral("--demo")))) {
     const hull::report::HeadlessCommand command = hull::report::ParseHeadlessCommand(arguments);
+    if (!command.error.isEmpty() || command.help) return hull::report::RunHeadlessJob(command);  // no Qt needed
     hull::report::PrepareHeadless();
     QGuiApplication app(argc, argv);
     return hull::report::RunHeadlessJob(command);

@@ -172,7 +172,7 @@ HeadlessCommand ParseHeadlessCommand(const QStringList& a) {
       c.help = true;
     } else {
       c.error = QStringLiteral(
-                    "without a display hullinspect takes --demo [--out DIR] or --report RESULTS --out DIR, "
+                    "the headless job takes --demo [--out DIR] or --report RESULTS --out DIR, "
                     "not '%1'")
                     .arg(arg);
     }
