@@ -233,38 +233,37 @@ Detection Detect(const std::string& preset, Params params) {
     if (marginal) ++out.marginal;
     if (!hit && definable && !marginal) ++out.missed_clear;
   }
-  std::printf("[%s, %s, tau 0] %d of %d required objects detected (%d below min_area above h_min, %d marginal); "
-              "%d false objects\n",
-              preset.c_str(), Name(params), out.detected, out.required, out.undetectable, out.marginal,
-              CountFalseObjects(c, r, "tau 0"));
+  std::printf(
+      "[%s, %s, tau 0] %d of %d required objects detected (%d below min_area above h_min, %d marginal); "
+      "%d false objects\n",
+      preset.c_str(), Name(params), out.detected, out.required, out.undetectable, out.marginal,
+      CountFalseObjects(c, r, "tau 0"));
   return out;
 }
 
-class MappingSurvey : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(MappingSurvey, EveryDetectableLargeObjectIsDetectedAtTauZero) {
+void EveryDetectableLargeObjectIsDetectedAtTauZero(const std::string& preset) {
   // With eps and alpha suited to the simulated feature density, every
   // required object with more than 1.5 x min_area above h_min is detected
   // (see Detect() for the marginal ones; on these surveys: patch-3, not an
   // object by definition, and patch-2).
-  const Detection d = Detect(GetParam(), Params::kDense);
+  const Detection d = Detect(preset, Params::kDense);
   EXPECT_GE(d.required - d.undetectable - d.marginal, 15);  // the clear cases, all to be detected
   EXPECT_EQ(d.missed_clear, 0);
 }
 
-TEST_P(MappingSurvey, PaperParametersDetectMostLargeObjects) {
+void PaperParametersDetectMostLargeObjects(const std::string& preset) {
   // The paper's eps and alpha were chosen for denser features than the
   // simulator's ~150 per m^2 of foreign structure: objects sampled by a few
   // features at most 10 cm apart can form no cluster (measured: 15 of 19
   // detected on both presets; see docs/mapping.md).
-  const Detection d = Detect(GetParam(), Params::kPaper);
+  const Detection d = Detect(preset, Params::kPaper);
   EXPECT_GE(d.detected, d.required - 4);
 }
 
-TEST_P(MappingSurvey, CylinderHeightOnTheRemeshedModel) {
-  const Case& c = GetCase(GetParam());
+void CylinderHeightOnTheRemeshedModel(const std::string& preset) {
+  const Case& c = GetCase(preset);
   for (const Params params : {Params::kPaper, Params::kDense}) {
-    const MappingResult& r = Map(GetParam(), params, 0.0);
+    const MappingResult& r = Map(preset, params, 0.0);
     const TrueObject* cyl = nullptr;
     for (const auto& o : c.survey.bundle.truth->objects) {
       if (o.id == "cyl-1") cyl = &o;
@@ -285,13 +284,13 @@ TEST_P(MappingSurvey, CylinderHeightOnTheRemeshedModel) {
     std::printf(
         "[%s, %s] cylinder (true height %.3f m): median %.4f m, max %.4f m over %zu fused vertices of its "
         "top (within %.2f m of its axis)\n",
-        GetParam().c_str(), Name(params), cyl->height, median, highest, top.size(), cyl->radius - 0.05);
+        preset.c_str(), Name(params), cyl->height, median, highest, top.size(), cyl->radius - 0.05);
     EXPECT_NEAR(median, cyl->height, 0.015);
   }
 }
 
-TEST_P(MappingSurvey, ModelStaysOnTheCadAwayFromObjects) {
-  const Case& c = GetCase(GetParam());
+void ModelStaysOnTheCadAwayFromObjects(const std::string& preset) {
+  const Case& c = GetCase(preset);
   const auto foot = Footprints(c);
   // How far the adjusted features of the clean hull lie from the CAD: the
   // fused surface passes through them, so it cannot be flatter.
@@ -307,11 +306,11 @@ TEST_P(MappingSurvey, ModelStaysOnTheCadAwayFromObjects) {
     std::printf(
         "[%s] adjusted hull features: |deviation| median %.4f m, 99th percentile %.4f m, max %.4f m; "
         "%.2f %% beyond 1 cm\n",
-        GetParam().c_str(), hull[hull.size() / 2], hull[hull.size() * 99 / 100], hull.back(),
+        preset.c_str(), hull[hull.size() / 2], hull[hull.size() * 99 / 100], hull.back(),
         100.0 * static_cast<double>(beyond) / static_cast<double>(hull.size()));
   }
   for (const Params params : {Params::kPaper, Params::kDense}) {
-    const MappingResult& r = Map(GetParam(), params, 0.0);
+    const MappingResult& r = Map(preset, params, 0.0);
     const std::vector<double>& dev = *r.model.FindScalar("deviation");
     const std::vector<double>& fusions = *r.model.FindScalar("fusions");
     std::size_t away = 0;
@@ -333,7 +332,7 @@ TEST_P(MappingSurvey, ModelStaysOnTheCadAwayFromObjects) {
     std::printf(
         "[%s, %s] %zu vertices > 0.3 m from every object, %zu of them fused: |deviation| 99th percentile "
         "%.4f m, max %.4f m, %zd beyond 1 cm\n",
-        GetParam().c_str(), Name(params), away, fused.size(), p99, worst, beyond);
+        preset.c_str(), Name(params), away, fused.size(), p99, worst, beyond);
     EXPECT_GT(away, 1000u);
     // Within 1 cm except where the features it passes through lie further
     // off themselves (1.5-4 % of the adjusted hull features do, up to 2 cm):
@@ -349,36 +348,35 @@ TEST_P(MappingSurvey, ModelStaysOnTheCadAwayFromObjects) {
   }
 }
 
-TEST_P(MappingSurvey, NoFalseObjectsAtTauSixCentimetres) {
-  const Case& c = GetCase(GetParam());
+void NoFalseObjectsAtTauSixCentimetres(const std::string& preset) {
+  const Case& c = GetCase(preset);
   for (const Params params : {Params::kPaper, Params::kDense}) {
-    const MappingResult& r = Map(GetParam(), params, 0.06);
+    const MappingResult& r = Map(preset, params, 0.06);
     const int n = CountFalseObjects(c, r, "tau 0.06");
-    std::printf("[%s, %s, tau 0.06] %zu objects, %d false\n", GetParam().c_str(), Name(params), r.objects.size(), n);
+    std::printf("[%s, %s, tau 0.06] %zu objects, %d false\n", preset.c_str(), Name(params), r.objects.size(), n);
     EXPECT_EQ(n, 0);
     EXPECT_GE(r.objects.size(), 3u);
   }
 }
 
-TEST_P(MappingSurvey, RerunAfterTauChangeReusesTheRefinedMesh) {
-  Case& c = GetCase(GetParam());
+void RerunAfterTauChangeReusesTheRefinedMesh(const std::string& preset) {
+  Case& c = GetCase(preset);
   for (const Params params : {Params::kPaper, Params::kDense}) {
-    const MappingResult& low = Map(GetParam(), params, 0.0);
+    const MappingResult& low = Map(preset, params, 0.0);
     const int before = c.mappers.at(params)->refinements();
     NullProgress p;
     for (const double tau : {0.03, 0.06, 0.1}) {
       const MappingResult r = c.mappers.at(params)->Run(Options(params, tau), p);
       EXPECT_TRUE(r.summary.refinement_reused) << "tau " << tau;
       EXPECT_LT(r.summary.points_clustered, low.summary.points_clustered);
-      std::printf("[%s, %s] re-run at tau %.2f: %.3f s\n", GetParam().c_str(), Name(params), tau,
-                  r.summary.seconds.total);
+      std::printf("[%s, %s] re-run at tau %.2f: %.3f s\n", preset.c_str(), Name(params), tau, r.summary.seconds.total);
     }
     EXPECT_EQ(c.mappers.at(params)->refinements(), before);
   }
 }
 
-TEST_P(MappingSurvey, UnseenZonesAreUninspectedAndSeenOnesRated) {
-  const MappingResult& r = Map(GetParam(), Params::kPaper, 0.0);
+void UnseenZonesAreUninspectedAndSeenOnesRated(const std::string& preset) {
+  const MappingResult& r = Map(preset, Params::kPaper, 0.0);
   int inspected = 0, uninspected = 0;
   double seen = 0;
   for (const auto& z : r.zones) {
@@ -409,8 +407,8 @@ TEST_P(MappingSurvey, UnseenZonesAreUninspectedAndSeenOnesRated) {
   EXPECT_NEAR(covered, objects, 1e-9);
 }
 
-TEST_P(MappingSurvey, FastFusionEqualsThePapersLoops) {
-  Case& c = GetCase(GetParam());
+void FastFusionEqualsThePapersLoops(const std::string& preset) {
+  Case& c = GetCase(preset);
   Mapper& mapper = *c.mappers.at(Params::kDense);
   NullProgress p;
   const MappingResult last = mapper.Run(Options(Params::kDense, 0.0), p);  // fused into prior_mesh()
@@ -432,9 +430,9 @@ TEST_P(MappingSurvey, FastFusionEqualsThePapersLoops) {
   EXPECT_EQ(last.model.vertices, fast.vertices);  // the run's model is that fusion
 }
 
-TEST_P(MappingSurvey, WritesTheResultsFolder) {
-  const MappingResult& r = Map(GetParam(), Params::kPaper, 0.0);
-  const std::string dir = std::string(HI_BINARY_DIR) + "/test-output/mapping-" + GetParam();
+void WritesTheResultsFolder(const std::string& preset) {
+  const MappingResult& r = Map(preset, Params::kPaper, 0.0);
+  const std::string dir = std::string(HI_BINARY_DIR) + "/test-output/mapping-" + preset;
   std::filesystem::remove_all(dir);
   WriteMappingResult(r, dir);
   MeshLoadOptions raw;
@@ -457,6 +455,32 @@ TEST_P(MappingSurvey, WritesTheResultsFolder) {
   const Json summary = Json::Parse(ReadFileToString(dir + "/mapping.json"), "mapping.json");
   EXPECT_EQ(summary.Get("format")->as_string(), "hull-mapping");
   EXPECT_EQ(summary.Get("version")->as_number(), 1);
+}
+
+// Each case below runs in its own process under ctest (gtest_discover_tests)
+// and simulates and adjusts its preset once: a few cases, each checking
+// several things, keep the suite short.
+class MappingSurvey : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(MappingSurvey, DetectionAtTauZero) {
+  EveryDetectableLargeObjectIsDetectedAtTauZero(GetParam());
+  PaperParametersDetectMostLargeObjects(GetParam());
+}
+
+TEST_P(MappingSurvey, HeightsAndFlatness) {
+  CylinderHeightOnTheRemeshedModel(GetParam());
+  ModelStaysOnTheCadAwayFromObjects(GetParam());
+}
+
+TEST_P(MappingSurvey, HigherTau) {
+  NoFalseObjectsAtTauSixCentimetres(GetParam());
+  RerunAfterTauChangeReusesTheRefinedMesh(GetParam());
+}
+
+TEST_P(MappingSurvey, ZonesFusionAndFiles) {
+  UnseenZonesAreUninspectedAndSeenOnesRated(GetParam());
+  FastFusionEqualsThePapersLoops(GetParam());
+  WritesTheResultsFolder(GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(Presets, MappingSurvey, ::testing::Values("demo", "mono"));
