@@ -6,6 +6,7 @@
 #include <QGroupBox>
 #include <QLabel>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QSpinBox>
 #include <QUndoCommand>
 #include <QUndoStack>
@@ -43,12 +44,19 @@ ParameterPanel::ParameterPanel(ParameterTable table, ParameterValidator validato
   setObjectName(QStringLiteral("parameterPanel"));
   qRegisterMetaType<ParameterValues>("hull::ui::ParameterValues");
   undo_ = new QUndoStack(this);
-  auto* outer = new QVBoxLayout(this);
+  // The fields scroll when the dock is short.
+  auto* root = new QVBoxLayout(this);
+  root->setContentsMargins(0, 0, 0, 0);
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  auto* content = new QWidget(scroll);
+  auto* outer = new QVBoxLayout(content);
   QMap<QString, QFormLayout*> forms;
   for (const ParameterDescriptor& d : table_) {
     QFormLayout*& form = forms[d.group];
     if (!form) {
-      auto* box = new QGroupBox(d.group, this);
+      auto* box = new QGroupBox(d.group, content);
       form = new QFormLayout(box);
       form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
       outer->addWidget(box);
@@ -111,6 +119,8 @@ ParameterPanel::ParameterPanel(ParameterTable table, ParameterValidator validato
   connect(defaults, &QPushButton::clicked, this, &ParameterPanel::RestoreDefaults);
   outer->addWidget(defaults, 0, Qt::AlignRight);
   outer->addStretch(1);
+  scroll->setWidget(content);
+  root->addWidget(scroll);
   WriteEditors(values_);
 }
 

@@ -17,6 +17,9 @@ namespace hull::ui {
 
 struct ParameterDescriptor {
   enum class Type { kReal, kInteger, kChoice };
+  // What a change of the field re-runs: the bundle adjustment (and mapping
+  // after it), mapping only, or nothing (display-only fields).
+  enum class Stage { kAdjustment, kMapping, kNone };
 
   QString key;    // stable name: project files, later the options field
   QString group;  // panel section ("Adjustment", "Mapping", ...)
@@ -30,6 +33,7 @@ struct ParameterDescriptor {
   QStringList choice_keys;    // kChoice: values as stored ("max_mixture", ...)
   QStringList choice_labels;  // kChoice: as shown
   QString tooltip;
+  Stage stage = Stage::kNone;
 
   // The default as a value of the map: double, int or the choice key.
   QVariant DefaultValue() const;
@@ -49,7 +53,8 @@ using ParameterTable = std::vector<ParameterDescriptor>;
 
 // The model-assisted bundle adjustment and mapping parameters of Ozog et al.
 // (sigma0, sigma1, surface model, tau, alpha, DBSCAN epsilon and minimum
-// points, solver iterations) with the paper's values as defaults.
+// points, solver limits), bound to the core options structs: their defaults
+// are the structs' defaults (see inspection_parameters.h).
 const ParameterTable& DefaultParameterTable();
 ParameterValues DefaultValues(const ParameterTable& table);
 const ParameterDescriptor* FindParameter(const ParameterTable& table, const QString& key);
@@ -57,8 +62,8 @@ const ParameterDescriptor* FindParameter(const ParameterTable& table, const QStr
 // Every field present, of its type, in its range, a known choice.
 std::vector<ParameterError> CheckAgainstTable(const ParameterTable& table, const ParameterValues& values);
 
-// CheckAgainstTable plus the rules between fields of the default table
-// (sigma1 < sigma0: the on-surface deviation must be the tighter one).
+// CheckAgainstTable, then the values copied into the core options structs
+// and their Check() (an OptionError names the field at fault).
 std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values);
 
 // A value converted to the descriptor's type (doubles from JSON become ints

@@ -38,7 +38,7 @@ class ParameterPanelTest : public QObject {
     QCOMPARE(Real(panel, "alpha")->value(), 0.12);
     QCOMPARE(qobject_cast<QSpinBox*>(panel.editor(QStringLiteral("dbscan_min_points")))->value(), 3);
     QCOMPARE(qobject_cast<QComboBox*>(panel.editor(QStringLiteral("model")))->currentData().toString(),
-             QStringLiteral("max_mixture"));
+             QStringLiteral("max-mixture"));
     QCOMPARE(panel.values(), DefaultValues(DefaultParameterTable()));
     QVERIFY(CheckDefaultParameters(panel.values()).empty());
   }
