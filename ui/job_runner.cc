@@ -11,6 +11,12 @@
 #include "base/error.h"
 #include "ui/error_text.h"
 
+#ifdef __linux__
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 namespace hull::ui {
 
 struct JobRunner::Job {
@@ -28,6 +34,17 @@ struct JobRunner::Job {
 };
 
 namespace {
+
+// Jobs run at a lower CPU priority than the GUI thread (nice +10, per thread
+// on Linux; the threads a job starts -- Ceres', TBB's -- inherit it): on a
+// machine whose cores the job keeps busy, the event loop and the rendering
+// still get their turn at once.
+void LowerThisThreadsPriority() {
+#ifdef __linux__
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  setpriority(PRIO_PROCESS, tid, 10);
+#endif
+}
 
 // The job's view of hull::Progress: updates become JobRunner::jobProgress
 // signals (queued to receivers on the GUI thread), at most one per 40 ms
@@ -113,6 +130,7 @@ void JobRunner::Launch(const std::shared_ptr<Job>& job) {
     emit jobProgress(id, kind, f, message);  // from the worker: queued to GUI-thread receivers
   };
   job->thread = QThread::create([raw, emit_progress] {
+    LowerThisThreadsPriority();
     JobProgress progress(emit_progress, raw->cancel);
     try {
       raw->work(progress);

@@ -1,18 +1,23 @@
 // What is open: the hull mesh, the survey bundle (with what the scene draws
-// of it) and where the model is placed in g. The document of the
-// application; views and panels follow its signals. Later rounds add the
-// pipeline's results here (alignment, adjusted poses and landmarks, maps).
+// of it), where the model is placed in g, and the pipeline's results for
+// them (the alignment, the adjustment on screen, the runs of each surface
+// model for the comparison and the mapping on screen). The document of the application; views and
+// panels follow its signals. Opening another mesh or survey drops the
+// results.
 #pragma once
 
 #include <QObject>
 #include <QString>
+#include <map>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
+#include "registration/model_alignment.h"
 #include "survey/survey.h"
+#include "ui/inspection_results.h"
 #include "ui/survey_overlays.h"
 
 namespace hull::ui {
@@ -51,6 +56,23 @@ class Session : public QObject {
   // x_gM: places the mesh (frame M) in the survey frame g.
   Pose ModelPose() const;
 
+  // The pipeline's results (nullptr: none yet).
+  using ModelRuns = std::map<SurfaceModel, std::shared_ptr<const AdjustmentRun>>;
+  const std::shared_ptr<const ModelAlignment>& alignment() const { return alignment_; }
+  const std::shared_ptr<const AdjustmentRun>& adjustment() const { return adjustment_; }
+  // The run of each surface model for the current parameters, as far as
+  // they were computed (the adjustment on screen is one of them).
+  const ModelRuns& modelRuns() const { return model_runs_; }
+  void SetAlignment(std::shared_ptr<const ModelAlignment> alignment);
+  // The first adjustment, and any while the model is placed by the
+  // adjustment, places the model by its x_gM.
+  void SetAdjustment(std::shared_ptr<const AdjustmentRun> run);
+  void SetModelRuns(ModelRuns runs);
+  // The mapping on screen (of the adjustment on screen, normally).
+  const std::shared_ptr<const MappingRun>& mapping() const { return mapping_; }
+  void SetMapping(std::shared_ptr<const MappingRun> run);
+  void ClearResults();
+
   // The project file this session was last saved to or opened from ("" if none).
   const QString& projectPath() const { return project_path_; }
   void SetProjectPath(const QString& path);
@@ -60,12 +82,20 @@ class Session : public QObject {
   void surveyChanged();
   void placementChanged();
   void projectPathChanged();
+  void alignmentChanged();
+  void adjustmentChanged();
+  void modelRunsChanged();
+  void mappingChanged();
 
  private:
   std::optional<LoadedMesh> mesh_;
   std::optional<LoadedSurvey> survey_;
   ModelPlacement placement_ = ModelPlacement::kIdentity;
   QString project_path_;
+  std::shared_ptr<const ModelAlignment> alignment_;
+  std::shared_ptr<const AdjustmentRun> adjustment_;
+  ModelRuns model_runs_;
+  std::shared_ptr<const MappingRun> mapping_;
 };
 
 }  // namespace hull::ui

@@ -223,6 +223,8 @@ const char* ModelPlacementKey(ModelPlacement p) {
       return "guess";
     case ModelPlacement::kTruth:
       return "truth";
+    case ModelPlacement::kAdjusted:
+      return "adjusted";
   }
   return "";
 }
@@ -235,12 +237,15 @@ const char* ModelPlacementLabel(ModelPlacement p) {
       return "model_pose_guess (survey.json)";
     case ModelPlacement::kTruth:
       return "ground truth (truth/model_pose.json)";
+    case ModelPlacement::kAdjusted:
+      return "bundle adjustment (x_gM estimated)";
   }
   return "";
 }
 
 bool ModelPlacementFromKey(const std::string& key, ModelPlacement* p) {
-  for (ModelPlacement c : {ModelPlacement::kIdentity, ModelPlacement::kGuess, ModelPlacement::kTruth}) {
+  for (ModelPlacement c :
+       {ModelPlacement::kIdentity, ModelPlacement::kGuess, ModelPlacement::kTruth, ModelPlacement::kAdjusted}) {
     if (key == ModelPlacementKey(c)) {
       *p = c;
       return true;

@@ -84,14 +84,16 @@ struct SurveyOverlays {
 
 SurveyOverlays ComputeSurveyOverlays(const SurveyBundle& bundle);
 
-// Where the CAD model is placed in g, and from what.
-enum class ModelPlacement { kIdentity, kGuess, kTruth };
-const char* ModelPlacementKey(ModelPlacement p);  // "identity", "guess", "truth"
+// Where the CAD model is placed in g, and from what. kAdjusted (the bundle
+// adjustment's x_gM) exists only in a Session holding an adjustment.
+enum class ModelPlacement { kIdentity, kGuess, kTruth, kAdjusted };
+const char* ModelPlacementKey(ModelPlacement p);  // "identity", "guess", "truth", "adjusted"
 const char* ModelPlacementLabel(ModelPlacement p);
 bool ModelPlacementFromKey(const std::string& key, ModelPlacement* p);
 // Placements the bundle offers (identity always; the guess and the truth when
 // present), best first: truth, guess, identity. Without a bundle: identity.
 std::vector<ModelPlacement> AvailablePlacements(const SurveyBundle* bundle);
+// The bundle's placements (identity for kAdjusted: the Session knows that one).
 Pose PlacementPose(const SurveyBundle* bundle, ModelPlacement p);
 
 }  // namespace hull::ui
