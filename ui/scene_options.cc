@@ -3,9 +3,20 @@
 namespace hull::ui {
 
 const std::vector<SceneLayer>& AllSceneLayers() {
-  static const std::vector<SceneLayer> layers = {
-      SceneLayer::kHull,      SceneLayer::kTrajectory,   SceneLayer::kTrueTrajectory, SceneLayer::kDvlHits,
-      SceneLayer::kLandmarks, SceneLayer::kTruthObjects, SceneLayer::kFrusta};
+  static const std::vector<SceneLayer> layers = {SceneLayer::kHull,
+                                                 SceneLayer::kTrajectory,
+                                                 SceneLayer::kTrueTrajectory,
+                                                 SceneLayer::kDvlHits,
+                                                 SceneLayer::kLandmarks,
+                                                 SceneLayer::kTruthObjects,
+                                                 SceneLayer::kFrusta,
+                                                 SceneLayer::kAdjustedTrajectory,
+                                                 SceneLayer::kAdjustedDvlHits,
+                                                 SceneLayer::kAdjustedLandmarks,
+                                                 SceneLayer::kSlab,
+                                                 SceneLayer::kHeatmap,
+                                                 SceneLayer::kAlphaShapes,
+                                                 SceneLayer::kDetectedObjects};
   return layers;
 }
 
@@ -25,6 +36,20 @@ QString LayerKey(SceneLayer layer) {
       return QStringLiteral("truth_objects");
     case SceneLayer::kFrusta:
       return QStringLiteral("frusta");
+    case SceneLayer::kAdjustedTrajectory:
+      return QStringLiteral("adjusted_trajectory");
+    case SceneLayer::kAdjustedDvlHits:
+      return QStringLiteral("adjusted_dvl_hits");
+    case SceneLayer::kAdjustedLandmarks:
+      return QStringLiteral("adjusted_landmarks");
+    case SceneLayer::kSlab:
+      return QStringLiteral("slab");
+    case SceneLayer::kHeatmap:
+      return QStringLiteral("heatmap");
+    case SceneLayer::kAlphaShapes:
+      return QStringLiteral("alpha_shapes");
+    case SceneLayer::kDetectedObjects:
+      return QStringLiteral("detected_objects");
   }
   return {};
 }
@@ -38,13 +63,27 @@ QString LayerLabel(SceneLayer layer) {
     case SceneLayer::kTrueTrajectory:
       return QStringLiteral("True trajectory");
     case SceneLayer::kDvlHits:
-      return QStringLiteral("DVL hits");
+      return QStringLiteral("DVL hits (initial poses)");
     case SceneLayer::kLandmarks:
-      return QStringLiteral("Landmarks");
+      return QStringLiteral("Landmarks (truth or initial)");
     case SceneLayer::kTruthObjects:
       return QStringLiteral("True objects (outlines)");
     case SceneLayer::kFrusta:
       return QStringLiteral("Camera frusta");
+    case SceneLayer::kAdjustedTrajectory:
+      return QStringLiteral("Trajectory (adjusted)");
+    case SceneLayer::kAdjustedDvlHits:
+      return QStringLiteral("DVL hits (adjusted poses)");
+    case SceneLayer::kAdjustedLandmarks:
+      return QStringLiteral("Landmarks (adjusted)");
+    case SceneLayer::kSlab:
+      return QStringLiteral("Cross-section slab");
+    case SceneLayer::kHeatmap:
+      return QStringLiteral("Remeshed model (deviation)");
+    case SceneLayer::kAlphaShapes:
+      return QStringLiteral("Alpha shapes (per keyframe)");
+    case SceneLayer::kDetectedObjects:
+      return QStringLiteral("Detected objects (outlines)");
   }
   return {};
 }
@@ -73,7 +112,9 @@ bool SceneOptions::IsVisible(SceneLayer layer) const {
 
 std::map<SceneLayer, bool> SceneOptions::DefaultVisibility() {
   std::map<SceneLayer, bool> v;
-  for (SceneLayer layer : AllSceneLayers()) v[layer] = layer != SceneLayer::kFrusta;
+  for (SceneLayer layer : AllSceneLayers()) {
+    v[layer] = layer != SceneLayer::kFrusta && layer != SceneLayer::kAlphaShapes;
+  }
   return v;
 }
 

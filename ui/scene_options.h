@@ -19,6 +19,15 @@ enum class SceneLayer {
   kLandmarks,       // landmarks (truth or landmarks.csv)
   kTruthObjects,    // outlines of the true foreign objects (truth/objects.json)
   kFrusta,          // camera frusta of every Nth keyframe
+  // The bundle adjustment's results (present once it ran):
+  kAdjustedTrajectory,  // vehicle positions after adjustment
+  kAdjustedDvlHits,     // DVL returns from the adjusted poses
+  kAdjustedLandmarks,   // adjusted landmarks: label (max-mixture lambda) or deviation
+  kSlab,                // the cross-section slab, a translucent box
+  // Mapping's results (present once it ran):
+  kHeatmap,          // the fused, remeshed model coloured by its deviation
+  kAlphaShapes,      // Algorithm 1's alpha shapes of every keyframe
+  kDetectedObjects,  // the detected objects' footprint outlines
 };
 
 const std::vector<SceneLayer>& AllSceneLayers();
@@ -43,7 +52,7 @@ struct SceneOptions {
   int frustum_stride = 10;  // a frustum at every Nth keyframe
 
   bool IsVisible(SceneLayer layer) const;
-  static std::map<SceneLayer, bool> DefaultVisibility();  // all on except the frusta
+  static std::map<SceneLayer, bool> DefaultVisibility();  // all on except the frusta and alpha shapes
   bool operator==(const SceneOptions& o) const;
   bool operator!=(const SceneOptions& o) const { return !(*this == o); }
 };

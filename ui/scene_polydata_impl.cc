@@ -88,6 +88,110 @@ vtkSmartPointer<vtkPolyData> LandmarksPolyData(const std::vector<LandmarkMarker>
   return poly;
 }
 
+vtkSmartPointer<vtkPolyData> AdjustedLandmarksPolyData(const std::vector<AdjustedLandmark>& landmarks) {
+  std::vector<Eigen::Vector3d> positions;
+  positions.reserve(landmarks.size());
+  for (const AdjustedLandmark& l : landmarks) positions.push_back(l.position);
+  auto poly = PointCloudPolyData(positions);
+  vtkNew<vtkUnsignedCharArray> rgb;
+  rgb->SetName("label_rgb");
+  rgb->SetNumberOfComponents(3);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
+  vtkNew<vtkDoubleArray> deviation;
+  deviation->SetName("deviation");
+  deviation->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
+  for (std::size_t i = 0; i < landmarks.size(); ++i) {
+    const unsigned char green[3] = {40, 200, 60}, red[3] = {230, 40, 40};
+    rgb->SetTypedTuple(static_cast<vtkIdType>(i), landmarks[i].label == 1 ? green : red);
+    deviation->SetValue(static_cast<vtkIdType>(i), landmarks[i].deviation);
+  }
+  poly->GetPointData()->AddArray(rgb);
+  poly->GetPointData()->AddArray(deviation);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> SlabPolyData(const SlabBox& slab) {
+  std::vector<Eigen::Vector3d> corners;
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::Vector3d s((k & 1) ? 1.0 : -1.0, (k & 2) ? 1.0 : -1.0, (k & 4) ? 1.0 : -1.0);
+    corners.push_back(slab.centre + slab.axes * s.cwiseProduct(slab.half_extents));
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(corners));
+  vtkNew<vtkCellArray> quads;
+  const vtkIdType faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  for (const auto& f : faces) quads->InsertNextCell(4, f);
+  poly->SetPolys(quads);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> HeatmapPolyData(const TriangleMesh& mesh) {
+  auto poly = MeshPolyData(mesh);
+  if (mesh.vertex_normals.size() == mesh.vertices.size()) {
+    vtkNew<vtkDoubleArray> normals;
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(static_cast<vtkIdType>(mesh.vertices.size()));
+    for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+      normals->SetTuple(static_cast<vtkIdType>(i), mesh.vertex_normals[i].data());
+    }
+    poly->GetPointData()->SetNormals(normals);
+  }
+  vtkNew<vtkDoubleArray> deviation;
+  deviation->SetName("deviation");
+  deviation->SetNumberOfTuples(static_cast<vtkIdType>(mesh.vertices.size()));
+  const std::vector<double>* d = mesh.FindScalar("deviation");
+  for (std::size_t i = 0; i < mesh.vertices.size(); ++i) {
+    deviation->SetValue(static_cast<vtkIdType>(i), d ? (*d)[i] : 0.0);
+  }
+  poly->GetPointData()->AddArray(deviation);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> AlphaShapesPolyData(const std::vector<KeyframeShapes>& keyframes) {
+  std::vector<Eigen::Vector3d> points;
+  vtkNew<vtkCellArray> triangles;
+  for (const KeyframeShapes& k : keyframes) {
+    for (const DetectedShape& s : k.shapes) {
+      const vtkIdType base = static_cast<vtkIdType>(points.size());
+      points.insert(points.end(), s.vertices_g.begin(), s.vertices_g.end());
+      for (const Face& f : s.triangles) {
+        const vtkIdType ids[3] = {base + f[0], base + f[1], base + f[2]};
+        triangles->InsertNextCell(3, ids);
+      }
+    }
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(points));
+  poly->SetPolys(triangles);
+  return poly;
+}
+
+vtkSmartPointer<vtkPolyData> SegmentsPolyData(const std::vector<std::vector<std::array<Eigen::Vector3d, 2>>>& groups) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> owner;
+  vtkNew<vtkCellArray> lines;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    for (const auto& segment : groups[k]) {
+      const vtkIdType ids[2] = {static_cast<vtkIdType>(points.size()), static_cast<vtkIdType>(points.size() + 1)};
+      lines->InsertNextCell(2, ids);
+      points.push_back(segment[0]);
+      points.push_back(segment[1]);
+      owner.push_back(static_cast<int>(k));
+      owner.push_back(static_cast<int>(k));
+    }
+  }
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(MakePoints(points));
+  poly->SetLines(lines);
+  vtkNew<vtkIntArray> index;
+  index->SetName("object_index");
+  index->SetNumberOfTuples(static_cast<vtkIdType>(owner.size()));
+  for (std::size_t i = 0; i < owner.size(); ++i) index->SetValue(static_cast<vtkIdType>(i), owner[i]);
+  poly->GetPointData()->AddArray(index);
+  return poly;
+}
+
 vtkSmartPointer<vtkPolyData> OutlinesPolyData(const std::vector<ObjectOutline>& outlines) {
   std::vector<Eigen::Vector3d> points;
   std::vector<int> owner;

@@ -4,10 +4,13 @@
 #include <vtkSmartPointer.h>
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
+#include "ui/cross_section.h"
+#include "ui/inspection_results.h"
 #include "ui/survey_overlays.h"
 
 class vtkMatrix4x4;
@@ -24,6 +27,18 @@ vtkSmartPointer<vtkPolyData> PointCloudPolyData(const std::vector<Eigen::Vector3
 // Landmarks as vertices with the point arrays "label_rgb" (green on the
 // hull, red on a foreign object, grey when unknown) and "deviation".
 vtkSmartPointer<vtkPolyData> LandmarksPolyData(const std::vector<LandmarkMarker>& landmarks);
+// Adjusted landmarks as vertices with "label_rgb" (green for lambda = 1, on
+// the hull; red for lambda = 0, foreign structure) and "deviation" (estimated).
+vtkSmartPointer<vtkPolyData> AdjustedLandmarksPolyData(const std::vector<AdjustedLandmark>& landmarks);
+// The slab's six faces (quads).
+vtkSmartPointer<vtkPolyData> SlabPolyData(const SlabBox& slab);
+// The fused model (in M) with its vertex normals and the point array
+// "deviation" (zero where the mesh has none).
+vtkSmartPointer<vtkPolyData> HeatmapPolyData(const TriangleMesh& mesh);
+// Every keyframe's alpha shapes, as triangles in g.
+vtkSmartPointer<vtkPolyData> AlphaShapesPolyData(const std::vector<KeyframeShapes>& keyframes);
+// Segments grouped per object, with the point array "object_index".
+vtkSmartPointer<vtkPolyData> SegmentsPolyData(const std::vector<std::vector<std::array<Eigen::Vector3d, 2>>>& groups);
 // Closed loops and segments of every outline, with the point array
 // "object_index" (position in `outlines`) for picking.
 vtkSmartPointer<vtkPolyData> OutlinesPolyData(const std::vector<ObjectOutline>& outlines);

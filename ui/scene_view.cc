@@ -10,6 +10,7 @@
 #include <QTimer>
 #include <QVBoxLayout>
 
+#include <array>
 #include <cmath>
 
 #include "ui/scene_view_impl.h"
@@ -64,6 +65,21 @@ void SceneView::SetSurvey(std::shared_ptr<const SurveyBundle> bundle, std::share
   ScheduleRender();
 }
 
+void SceneView::SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted) {
+  impl_->SetAdjusted(std::move(adjusted));
+  ScheduleRender();
+}
+
+void SceneView::SetMapping(std::shared_ptr<const MappingRun> mapping) {
+  impl_->SetMapping(std::move(mapping));
+  ScheduleRender();
+}
+
+void SceneView::SetSlab(const std::optional<SlabBox>& slab) {
+  impl_->SetSlab(slab);
+  ScheduleRender();
+}
+
 void SceneView::SetOptions(const SceneOptions& options) {
   impl_->SetOptions(options);
   ScheduleRender();
@@ -79,7 +95,50 @@ void SceneView::ResetCamera() {
 CameraState SceneView::Camera() const { return impl_->Camera(); }
 
 void SceneView::SetCamera(const CameraState& camera) {
+  if (flight_timer_) flight_timer_->stop();
   impl_->SetCamera(camera);
+  ScheduleRender();
+}
+
+namespace {
+
+constexpr int kFlightSteps = 12;  // at 25 ms: 0.3 s
+
+std::array<double, 3> Lerp(const std::array<double, 3>& a, const std::array<double, 3>& b, double t) {
+  return {a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])};
+}
+
+}  // namespace
+
+void SceneView::FlyTo(const Eigen::Vector3d& p_g, double radius) {
+  flight_from_ = impl_->Camera();
+  CameraState to = flight_from_;
+  Eigen::Vector3d direction(to.position[0] - to.focal_point[0], to.position[1] - to.focal_point[1],
+                            to.position[2] - to.focal_point[2]);
+  if (direction.norm() < 1e-9) direction = Eigen::Vector3d(0, 0, 1);
+  const double distance = std::max(radius, 0.05) / std::sin(0.5 * to.view_angle * M_PI / 180.0);
+  const Eigen::Vector3d position = p_g + distance * direction.normalized();
+  to.focal_point = {p_g.x(), p_g.y(), p_g.z()};
+  to.position = {position.x(), position.y(), position.z()};
+  flight_to_ = to;
+  flight_step_ = 0;
+  if (!flight_timer_) {
+    flight_timer_ = new QTimer(this);
+    flight_timer_->setInterval(25);
+    connect(flight_timer_, &QTimer::timeout, this, &SceneView::StepFlight);
+  }
+  flight_timer_->start();
+}
+
+void SceneView::StepFlight() {
+  ++flight_step_;
+  const double s = static_cast<double>(flight_step_) / kFlightSteps;
+  const double t = s * s * (3 - 2 * s);  // ease in and out
+  CameraState c = flight_to_;
+  c.position = Lerp(flight_from_.position, flight_to_.position, t);
+  c.focal_point = Lerp(flight_from_.focal_point, flight_to_.focal_point, t);
+  impl_->SetCamera(c);
+  if (flight_step_ >= kFlightSteps) flight_timer_->stop();
   ScheduleRender();
 }
 
@@ -120,6 +179,19 @@ std::optional<QPoint> SceneView::WidgetPosition(const Eigen::Vector3d& p_g) cons
   const QPoint local(static_cast<int>(std::lround(display->first)),
                      static_cast<int>(std::lround(vtk_widget_->height() - 1 - display->second)));
   return vtk_widget_->mapTo(this, local);
+}
+
+void SceneView::showEvent(QShowEvent* event) {
+  QWidget::showEvent(event);
+  if (warmed_up_) return;
+  warmed_up_ = true;
+  // Once the widget has its OpenGL context: compile the layers' shaders now,
+  // while nothing is on screen yet, so that showing results later is quick.
+  QTimer::singleShot(0, this, [this] {
+    if (!vtk_widget_->isVisible()) return;
+    impl_->WarmUp();
+    ScheduleRender();
+  });
 }
 
 bool SceneView::eventFilter(QObject* watched, QEvent* event) {

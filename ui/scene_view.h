@@ -19,10 +19,13 @@
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
 #include "survey/survey.h"
+#include "ui/cross_section.h"
+#include "ui/inspection_results.h"
 #include "ui/pick_details.h"
 #include "ui/scene_options.h"
 #include "ui/survey_overlays.h"
 
+class QTimer;
 class QVTKOpenGLNativeWidget;
 
 namespace hull::ui {
@@ -44,6 +47,13 @@ class SceneView : public QWidget {
   void SetModelPose(const Pose& x_gM);
   // The survey and what to draw of it (both nullptr removes it).
   void SetSurvey(std::shared_ptr<const SurveyBundle> bundle, std::shared_ptr<const SurveyOverlays> overlays);
+  // The bundle adjustment's trajectory, DVL hits and landmarks (nullptr removes them).
+  void SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted);
+  // Mapping's fused model (heatmap), alpha shapes and detected objects
+  // (nullptr removes them).
+  void SetMapping(std::shared_ptr<const MappingRun> mapping);
+  // The cross-section slab (nullopt removes it).
+  void SetSlab(const std::optional<SlabBox>& slab);
   void SetOptions(const SceneOptions& options);
   const SceneOptions& options() const;
 
@@ -52,6 +62,9 @@ class SceneView : public QWidget {
   void ResetCamera();
   CameraState Camera() const;
   void SetCamera(const CameraState& camera);
+  // Moves the camera (animated over about 0.3 s) to look at p_g from the
+  // current direction, from far enough to see a sphere of `radius` metres.
+  void FlyTo(const Eigen::Vector3d& p_g, double radius);
 
   // The rendered image at the widget's size (vtkWindowToImageFilter); a null
   // image while the widget has never been shown.
@@ -79,15 +92,22 @@ class SceneView : public QWidget {
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
+  void showEvent(QShowEvent* event) override;
 
  private:
   void ScheduleRender();
+  void StepFlight();
 
   QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
   bool render_pending_ = false;
   std::unique_ptr<SceneViewImpl> impl_;
   QPoint press_position_;
   bool press_valid_ = false;
+  bool warmed_up_ = false;
+  // The flight in progress (FlyTo).
+  QTimer* flight_timer_ = nullptr;
+  CameraState flight_from_, flight_to_;
+  int flight_step_ = 0;
 };
 
 }  // namespace hull::ui

@@ -18,37 +18,21 @@
 #include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
 #include <vtkUnsignedCharArray.h>
-#include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 
+#include "ui/scene_layers_impl.h"
 #include "ui/scene_polydata_impl.h"
+#include "ui/vtk_grab_impl.h"
 
 namespace hull::ui {
 
 namespace {
 
-// Colours (RGB in [0, 1]).
-constexpr double kHullGrey[3] = {0.56, 0.58, 0.61};
-constexpr double kHullEdge[3] = {0.36, 0.37, 0.40};
-constexpr double kTrajectoryOrange[3] = {1.0, 0.62, 0.12};
-constexpr double kTruthMagenta[3] = {0.93, 0.35, 0.93};
-constexpr double kDvlCyan[3] = {0.2, 0.85, 0.95};
-constexpr double kObjectYellow[3] = {1.0, 0.92, 0.2};
-constexpr double kFrustumWhite[3] = {0.85, 0.88, 0.9};
 constexpr double kBackgroundBottom[3] = {0.02, 0.07, 0.13};
 constexpr double kBackgroundTop[3] = {0.10, 0.25, 0.38};
-
-vtkPolyDataMapper* MapperOf(vtkActor* actor) { return vtkPolyDataMapper::SafeDownCast(actor->GetMapper()); }
-
-vtkPolyData* DataOf(vtkActor* actor) {
-  vtkPolyDataMapper* mapper = MapperOf(actor);
-  return mapper ? vtkPolyData::SafeDownCast(mapper->GetInput()) : nullptr;
-}
-
-void SetData(vtkActor* actor, vtkPolyData* data) { MapperOf(actor)->SetInputData(data); }
 
 }  // namespace
 
@@ -57,6 +41,10 @@ SceneViewImpl::SceneViewImpl() {
   // polygon offset; a process-wide mapper setting, which every view wants).
   vtkMapper::SetResolveCoincidentTopologyToPolygonOffset();
   window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  // No multisampling: with a software OpenGL (Mesa's llvmpipe under Xvfb)
+  // VTK's default 8x MSAA multiplies the cost of every frame, and a frame
+  // is drawn on the GUI thread.
+  window_->SetMultiSamples(0);
   renderer_ = vtkSmartPointer<vtkRenderer>::New();
   renderer_->GradientBackgroundOn();
   renderer_->SetBackground(kBackgroundBottom[0], kBackgroundBottom[1], kBackgroundBottom[2]);
@@ -66,52 +54,7 @@ SceneViewImpl::SceneViewImpl() {
   for (SceneLayer layer : AllSceneLayers()) {
     vtkActor* actor = AddActor();
     actors_[layer] = actor;
-    vtkProperty* p = actor->GetProperty();
-    switch (layer) {
-      case SceneLayer::kHull:
-        p->SetColor(kHullGrey[0], kHullGrey[1], kHullGrey[2]);
-        p->SetEdgeColor(kHullEdge[0], kHullEdge[1], kHullEdge[2]);
-        p->SetInterpolationToFlat();
-        p->SetAmbient(0.25);
-        p->SetDiffuse(0.75);
-        p->SetSpecular(0.0);
-        actor->PickableOff();
-        // Landmarks, DVL hits and outlines lie on the surface: push the
-        // hull's polygons back in depth so that they stay visible.
-        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 8.0);
-        break;
-      case SceneLayer::kTrajectory:
-        p->SetColor(kTrajectoryOrange[0], kTrajectoryOrange[1], kTrajectoryOrange[2]);
-        p->SetLineWidth(2.0);
-        p->LightingOff();
-        break;
-      case SceneLayer::kTrueTrajectory:
-        p->SetColor(kTruthMagenta[0], kTruthMagenta[1], kTruthMagenta[2]);
-        p->SetLineWidth(2.0);
-        p->LightingOff();
-        break;
-      case SceneLayer::kDvlHits:
-        p->SetColor(kDvlCyan[0], kDvlCyan[1], kDvlCyan[2]);
-        p->SetPointSize(3.0);
-        p->LightingOff();
-        actor->PickableOff();
-        break;
-      case SceneLayer::kLandmarks:
-        p->SetPointSize(4.0);
-        p->LightingOff();
-        break;
-      case SceneLayer::kTruthObjects:
-        p->SetColor(kObjectYellow[0], kObjectYellow[1], kObjectYellow[2]);
-        p->SetLineWidth(2.0);
-        p->LightingOff();
-        break;
-      case SceneLayer::kFrusta:
-        p->SetColor(kFrustumWhite[0], kFrustumWhite[1], kFrustumWhite[2]);
-        p->SetOpacity(0.7);
-        p->LightingOff();
-        actor->PickableOff();
-        break;
-    }
+    StyleLayerActor(layer, actor);
   }
   selection_ = AddActor();
   selection_->GetProperty()->SetColor(1.0, 1.0, 1.0);
@@ -187,6 +130,45 @@ void SceneViewImpl::SetModelPose(const Pose& x_gM) {
   actors_[SceneLayer::kTruthObjects]->SetUserMatrix(PoseMatrix(x_gM));
 }
 
+void SceneViewImpl::SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted) {
+  adjusted_ = std::move(adjusted);
+  static const AdjustedOverlays kEmpty;
+  const AdjustedOverlays& a = adjusted_ ? *adjusted_ : kEmpty;
+  SetData(actors_[SceneLayer::kAdjustedTrajectory], PolylinePolyData(a.trajectory));
+  std::vector<Eigen::Vector3d> hits;
+  hits.reserve(a.dvl_hits.size());
+  for (const DvlHit& h : a.dvl_hits) hits.push_back(h.point);
+  SetData(actors_[SceneLayer::kAdjustedDvlHits], PointCloudPolyData(hits));
+  SetData(actors_[SceneLayer::kAdjustedLandmarks], AdjustedLandmarksPolyData(a.landmarks));
+  selection_->VisibilityOff();
+  UpdateLandmarkColours();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetMapping(std::shared_ptr<const MappingRun> mapping) {
+  mapping_ = std::move(mapping);
+  if (mapping_) {
+    SetData(actors_[SceneLayer::kHeatmap], HeatmapPolyData(mapping_->result->model));
+    SetData(actors_[SceneLayer::kAlphaShapes], AlphaShapesPolyData(mapping_->result->keyframes));
+    SetData(actors_[SceneLayer::kDetectedObjects], SegmentsPolyData(mapping_->overlays->object_outlines));
+    const auto matrix = PoseMatrix(mapping_->x_gM());
+    actors_[SceneLayer::kHeatmap]->SetUserMatrix(matrix);
+    actors_[SceneLayer::kDetectedObjects]->SetUserMatrix(matrix);
+  } else {
+    for (SceneLayer layer : {SceneLayer::kHeatmap, SceneLayer::kAlphaShapes, SceneLayer::kDetectedObjects}) {
+      SetData(actors_[layer], vtkSmartPointer<vtkPolyData>::New());
+    }
+  }
+  selection_->VisibilityOff();
+  UpdateLandmarkColours();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetSlab(const std::optional<SlabBox>& slab) {
+  SetData(actors_[SceneLayer::kSlab], slab ? SlabPolyData(*slab) : vtkSmartPointer<vtkPolyData>::New());
+  UpdateVisibility();
+}
+
 void SceneViewImpl::SetSurvey(std::shared_ptr<const SurveyBundle> bundle,
                               std::shared_ptr<const SurveyOverlays> overlays) {
   if (!bundle || !overlays) {
@@ -241,30 +223,67 @@ void SceneViewImpl::UpdateVisibility() {
   legend_->SetVisibility(LegendVisible());
 }
 
+bool SceneViewImpl::TruthDeviationsShown() const {
+  return options_.IsVisible(SceneLayer::kLandmarks) && overlays_ &&
+         overlays_->landmark_source == LandmarkSource::kTruth && !overlays_->landmarks.empty();
+}
+
+bool SceneViewImpl::AdjustedDeviationsShown() const {
+  return options_.IsVisible(SceneLayer::kAdjustedLandmarks) && adjusted_ && !adjusted_->landmarks.empty();
+}
+
+bool SceneViewImpl::HeatmapShown() const {
+  return options_.IsVisible(SceneLayer::kHeatmap) && mapping_ && !mapping_->result->model.empty();
+}
+
 bool SceneViewImpl::LegendVisible() const {
-  return options_.colouring == LandmarkColouring::kDeviation && options_.IsVisible(SceneLayer::kLandmarks) &&
-         overlays_ && overlays_->landmark_source == LandmarkSource::kTruth && !overlays_->landmarks.empty();
+  return HeatmapShown() ||
+         (options_.colouring == LandmarkColouring::kDeviation && (TruthDeviationsShown() || AdjustedDeviationsShown()));
 }
 
 std::pair<double, double> SceneViewImpl::EffectiveRange() const {
-  if (!options_.auto_range || !overlays_) return {options_.range_min, options_.range_max};
-  // Symmetric about zero so that the neutral colour means "on the surface".
-  const double m = std::max({std::abs(overlays_->min_deviation), std::abs(overlays_->max_deviation), 1e-3});
+  if (!options_.auto_range) return {options_.range_min, options_.range_max};
+  // Symmetric about zero so that the neutral colour means "on the surface",
+  // reaching the largest |deviation| of what is coloured by it.
+  double m = 1e-3;
+  if (options_.colouring == LandmarkColouring::kDeviation && TruthDeviationsShown()) {
+    m = std::max({m, std::abs(overlays_->min_deviation), std::abs(overlays_->max_deviation)});
+  }
+  const bool landmarks = options_.colouring == LandmarkColouring::kDeviation;
+  if (landmarks && AdjustedDeviationsShown()) {
+    m = std::max({m, std::abs(adjusted_->min_deviation), std::abs(adjusted_->max_deviation)});
+  }
+  if (HeatmapShown()) {
+    m = std::max({m, std::abs(mapping_->overlays->min_deviation), std::abs(mapping_->overlays->max_deviation)});
+  }
   return {-m, m};
 }
 
 std::pair<double, double> SceneViewImpl::LegendRange() const { return EffectiveRange(); }
 
 void SceneViewImpl::UpdateLandmarkColours() {
-  vtkPolyDataMapper* mapper = MapperOf(actors_[SceneLayer::kLandmarks]);
+  const auto [lo, hi] = EffectiveRange();
+  deviation_lut_->SetTableRange(lo, std::max(hi, lo + 1e-6));
+  for (SceneLayer layer : {SceneLayer::kLandmarks, SceneLayer::kAdjustedLandmarks}) {
+    ColourLandmarks(MapperOf(actors_[layer]));
+  }
+  vtkPolyDataMapper* heatmap = MapperOf(actors_[SceneLayer::kHeatmap]);
+  heatmap->ScalarVisibilityOn();
+  heatmap->SetScalarModeToUsePointFieldData();
+  heatmap->SelectColorArray("deviation");
+  heatmap->SetColorModeToMapScalars();
+  heatmap->SetLookupTable(deviation_lut_);
+  heatmap->UseLookupTableScalarRangeOn();
+  heatmap->Modified();
+}
+
+void SceneViewImpl::ColourLandmarks(vtkPolyDataMapper* mapper) {
   mapper->ScalarVisibilityOn();
   mapper->SetScalarModeToUsePointFieldData();
   if (options_.colouring == LandmarkColouring::kLabel) {
     mapper->SelectColorArray("label_rgb");
     mapper->SetColorModeToDirectScalars();
   } else {
-    const auto [lo, hi] = EffectiveRange();
-    deviation_lut_->SetTableRange(lo, std::max(hi, lo + 1e-6));
     mapper->SelectColorArray("deviation");
     mapper->SetColorModeToMapScalars();
     mapper->SetLookupTable(deviation_lut_);
@@ -342,6 +361,83 @@ void SceneViewImpl::SetCamera(const CameraState& state) {
   renderer_->ResetCameraClippingRange();
 }
 
+void SceneViewImpl::WarmUp() {
+  if (!window_->GetReadyForRendering()) return;
+  double focal[3];
+  renderer_->GetActiveCamera()->GetFocalPoint(focal);
+  const Eigen::Vector3d c(focal[0], focal[1], focal[2]);
+  const double e = 1e-6;
+  TriangleMesh tri;
+  tri.vertices = {c, c + Eigen::Vector3d(e, 0, 0), c + Eigen::Vector3d(0, e, 0)};
+  tri.faces = {Face{0, 1, 2}};
+  tri.ComputeNormals();
+  tri.SetScalar("deviation", {0.0, 0.01, -0.01});
+  const std::vector<Eigen::Vector3d> points = {c, c + Eigen::Vector3d(e, 0, 0)};
+  LandmarkMarker marker;
+  marker.position = c;
+  marker.has_truth = true;
+  AdjustedLandmark adjusted;
+  adjusted.position = c;
+  KeyframeShapes shapes;
+  DetectedShape shape;
+  shape.vertices_g = tri.vertices;
+  shape.triangles = tri.faces;
+  shapes.shapes.push_back(shape);
+  SlabBox slab;
+  slab.centre = c;
+  slab.half_extents = Eigen::Vector3d::Constant(e);
+
+  std::map<SceneLayer, vtkSmartPointer<vtkPolyData>> saved;
+  for (SceneLayer layer : AllSceneLayers()) {
+    saved[layer] = DataOf(actors_[layer]);
+    vtkSmartPointer<vtkPolyData> stand_in;
+    switch (layer) {
+      case SceneLayer::kHull:
+        stand_in = MeshPolyData(tri);
+        break;
+      case SceneLayer::kHeatmap:
+        stand_in = HeatmapPolyData(tri);
+        break;
+      case SceneLayer::kAlphaShapes:
+        stand_in = AlphaShapesPolyData({shapes});
+        break;
+      case SceneLayer::kSlab:
+        stand_in = SlabPolyData(slab);
+        break;
+      case SceneLayer::kLandmarks:
+        stand_in = LandmarksPolyData({marker});
+        break;
+      case SceneLayer::kAdjustedLandmarks:
+        stand_in = AdjustedLandmarksPolyData({adjusted});
+        break;
+      case SceneLayer::kDvlHits:
+      case SceneLayer::kAdjustedDvlHits:
+        stand_in = PointCloudPolyData(points);
+        break;
+      case SceneLayer::kTrajectory:
+      case SceneLayer::kTrueTrajectory:
+      case SceneLayer::kAdjustedTrajectory:
+      case SceneLayer::kTruthObjects:
+      case SceneLayer::kFrusta:
+      case SceneLayer::kDetectedObjects:
+        stand_in = PolylinePolyData(points);
+        break;
+    }
+    SetData(actors_[layer], stand_in);
+    actors_[layer]->SetVisibility(true);
+  }
+  const SceneOptions options = options_;
+  for (LandmarkColouring colouring : {LandmarkColouring::kLabel, LandmarkColouring::kDeviation}) {
+    options_.colouring = colouring;
+    UpdateLandmarkColours();
+    window_->Render();
+  }
+  options_ = options;
+  for (auto& [layer, data] : saved) SetData(actors_[layer], data);
+  UpdateLandmarkColours();
+  UpdateVisibility();
+}
+
 void SceneViewImpl::Render() {
   renderer_->ResetCameraClippingRange();
   window_->Render();
@@ -350,36 +446,21 @@ void SceneViewImpl::Render() {
 QImage SceneViewImpl::Grab() {
   if (!window_->GetReadyForRendering()) return {};
   Render();
-  vtkNew<vtkWindowToImageFilter> filter;
-  filter->SetInput(window_);
-  filter->SetInputBufferTypeToRGB();
-  filter->ReadFrontBufferOff();
-  filter->ShouldRerenderOn();
-  filter->Update();
-  vtkImageData* image = filter->GetOutput();
-  int dims[3];
-  image->GetDimensions(dims);
-  if (dims[0] <= 0 || dims[1] <= 0) return {};
-  auto* pixels = static_cast<const unsigned char*>(image->GetScalarPointer());
-  QImage out(dims[0], dims[1], QImage::Format_RGB888);
-  // VTK's rows run bottom-up.
-  for (int y = 0; y < dims[1]; ++y) {
-    std::memcpy(out.scanLine(dims[1] - 1 - y), pixels + static_cast<std::size_t>(y) * dims[0] * 3,
-                static_cast<std::size_t>(dims[0]) * 3);
-  }
-  return out;
+  return GrabRenderWindow(window_);
 }
 
 PickInfo SceneViewImpl::Pick(double x, double y) {
   PickInfo info;
   selection_->VisibilityOff();
   if (!bundle_ || !overlays_) return info;
-  // Landmarks first, then keyframes, then objects: the nearest point to the
-  // ray of the first layer that has one within the tolerance.
+  // Landmarks first (adjusted, then truth), then keyframes, then objects:
+  // the nearest point to the ray of the first layer that has one within the
+  // tolerance.
   vtkActor* actor = nullptr;
   vtkIdType id = -1;
-  for (SceneLayer layer :
-       {SceneLayer::kLandmarks, SceneLayer::kTrajectory, SceneLayer::kTrueTrajectory, SceneLayer::kTruthObjects}) {
+  for (SceneLayer layer : {SceneLayer::kAdjustedLandmarks, SceneLayer::kLandmarks, SceneLayer::kDetectedObjects,
+                           SceneLayer::kAdjustedTrajectory, SceneLayer::kTrajectory, SceneLayer::kTrueTrajectory,
+                           SceneLayer::kTruthObjects}) {
     vtkActor* candidate = actors_[layer];
     if (!candidate->GetVisibility()) continue;
     picker_->InitializePickList();
@@ -392,29 +473,43 @@ PickInfo SceneViewImpl::Pick(double x, double y) {
   }
   if (!actor) return info;
   const int index = static_cast<int>(id);
-  if (actor == actors_[SceneLayer::kLandmarks]) {
+  if (actor == actors_[SceneLayer::kAdjustedLandmarks]) {
+    info = DescribeAdjustedLandmark(*adjusted_, index);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(adjusted_->landmarks[index].position);
+  } else if (actor == actors_[SceneLayer::kLandmarks]) {
     info = DescribeLandmark(*overlays_, index);
-    if (info.kind != PickKind::kNone) ShowSelection(overlays_->landmarks[index].position);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(overlays_->landmarks[index].position);
+  } else if (actor == actors_[SceneLayer::kDetectedObjects]) {
+    vtkDataArray* owner = DataOf(actor)->GetPointData()->GetArray("object_index");
+    const int object = owner ? static_cast<int>(owner->GetTuple1(id)) : -1;
+    info = DescribeDetectedObject(*mapping_, object);
+    if (info.kind != PickKind::kNone) {
+      info.position = ShowSelection(mapping_->x_gM() * mapping_->result->objects[object].centroid_m);
+    }
+  } else if (actor == actors_[SceneLayer::kAdjustedTrajectory]) {
+    info = DescribeAdjustedKeyframe(*bundle_, *overlays_, *adjusted_, index);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(adjusted_->trajectory[index]);
   } else if (actor == actors_[SceneLayer::kTrajectory]) {
     info = DescribeKeyframe(*bundle_, *overlays_, index);
-    if (info.kind != PickKind::kNone) ShowSelection(overlays_->trajectory[index]);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(overlays_->trajectory[index]);
   } else if (actor == actors_[SceneLayer::kTrueTrajectory]) {
     if (index < static_cast<int>(overlays_->true_nav_index.size())) {
       info = DescribeKeyframe(*bundle_, *overlays_, overlays_->true_nav_index[index]);
-      if (info.kind != PickKind::kNone) ShowSelection(overlays_->true_trajectory[index]);
+      if (info.kind != PickKind::kNone) info.position = ShowSelection(overlays_->true_trajectory[index]);
     }
   } else if (actor == actors_[SceneLayer::kTruthObjects]) {
     vtkDataArray* owner = DataOf(actor)->GetPointData()->GetArray("object_index");
     const int object = owner ? static_cast<int>(owner->GetTuple1(id)) : -1;
     info = DescribeObject(*bundle_, *overlays_, object, x_gM_);
-    if (info.kind != PickKind::kNone) ShowSelection(x_gM_ * overlays_->objects[object].center);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(x_gM_ * overlays_->objects[object].center);
   }
   return info;
 }
 
-void SceneViewImpl::ShowSelection(const Eigen::Vector3d& p_g) {
+Eigen::Vector3d SceneViewImpl::ShowSelection(const Eigen::Vector3d& p_g) {
   SetData(selection_, PointCloudPolyData({p_g}));
   selection_->VisibilityOn();
+  return p_g;
 }
 
 std::optional<std::pair<double, double>> SceneViewImpl::ToDisplay(const Eigen::Vector3d& p_g) const {

@@ -13,6 +13,8 @@
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
 #include "survey/survey.h"
+#include "ui/cross_section.h"
+#include "ui/inspection_results.h"
 #include "ui/pick_details.h"
 #include "ui/scene_options.h"
 #include "ui/survey_overlays.h"
@@ -21,6 +23,7 @@ class vtkActor;
 class vtkGenericOpenGLRenderWindow;
 class vtkLookupTable;
 class vtkPointPicker;
+class vtkPolyDataMapper;
 class vtkPolyData;
 class vtkRenderer;
 class vtkScalarBarActor;
@@ -37,6 +40,10 @@ class SceneViewImpl {
   void SetMesh(std::shared_ptr<const TriangleMesh> mesh);
   void SetModelPose(const Pose& x_gM);
   void SetSurvey(std::shared_ptr<const SurveyBundle> bundle, std::shared_ptr<const SurveyOverlays> overlays);
+  void SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted);
+  void SetSlab(const std::optional<SlabBox>& slab);
+  // The fused model, alpha shapes and detected objects (nullptr removes them).
+  void SetMapping(std::shared_ptr<const MappingRun> mapping);
   void SetOptions(const SceneOptions& options);
   const SceneOptions& options() const { return options_; }
 
@@ -44,6 +51,11 @@ class SceneViewImpl {
   CameraState Camera() const;
   void SetCamera(const CameraState& camera);
 
+  // Draws every layer once with a tiny stand-in (invisible at the focal
+  // point) so that the shader programs they need are compiled now, not at
+  // the first render of real data (a software OpenGL compiles each program
+  // in tens of milliseconds); then restores the scene.
+  void WarmUp();
   // (Re)renders now and reads the back buffer.
   QImage Grab();
   void Render();
@@ -62,8 +74,12 @@ class SceneViewImpl {
   vtkActor* AddActor();
   void UpdateVisibility();
   void UpdateLandmarkColours();
+  void ColourLandmarks(vtkPolyDataMapper* mapper);
+  bool TruthDeviationsShown() const;
+  bool AdjustedDeviationsShown() const;
+  bool HeatmapShown() const;
   void UpdateFrusta();
-  void ShowSelection(const Eigen::Vector3d& p_g);
+  Eigen::Vector3d ShowSelection(const Eigen::Vector3d& p_g);  // returns p_g
   std::pair<double, double> EffectiveRange() const;
 
   vtkSmartPointer<vtkGenericOpenGLRenderWindow> window_;
@@ -77,6 +93,8 @@ class SceneViewImpl {
   std::shared_ptr<const TriangleMesh> mesh_;
   std::shared_ptr<const SurveyBundle> bundle_;
   std::shared_ptr<const SurveyOverlays> overlays_;
+  std::shared_ptr<const AdjustedOverlays> adjusted_;
+  std::shared_ptr<const MappingRun> mapping_;
   Pose x_gM_;
   SceneOptions options_;
   int frusta_stride_built_ = 0;  // 0: not built for the current survey
