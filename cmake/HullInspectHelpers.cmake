@@ -31,7 +31,10 @@ function(hi_add_library name)
   hi_set_target_options(${name})
 endfunction()
 
-# hi_add_test(name SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s]); LABELS default to "core".
+# hi_add_test(name SOURCES ... DEPS ... [LABELS label] [TIMEOUT s]); LABELS default to "core".
+# Give one label (gtest_discover_tests cannot pass a list through): ctest
+# matches labels as regular expressions, so "core-integration" is selected by
+# -L core and left out by -LE integration (the sanitizer run's selection).
 # A GoogleTest executable registered with CTest (one CTest entry per test case).
 function(hi_add_test name)
   cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
