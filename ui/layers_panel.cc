@@ -5,6 +5,7 @@
 #include <QDoubleSpinBox>
 #include <QFormLayout>
 #include <QGroupBox>
+#include <QScrollArea>
 #include <QSpinBox>
 #include <QVBoxLayout>
 
@@ -14,9 +15,16 @@ LayersPanel::LayersPanel(QWidget* parent) : QWidget(parent) {
   setObjectName(QStringLiteral("layersPanel"));
   qRegisterMetaType<SceneOptions>("hull::ui::SceneOptions");
   qRegisterMetaType<ModelPlacement>("hull::ui::ModelPlacement");
-  auto* outer = new QVBoxLayout(this);
+  // The controls scroll when the dock is short.
+  auto* root = new QVBoxLayout(this);
+  root->setContentsMargins(0, 0, 0, 0);
+  auto* scroll = new QScrollArea(this);
+  scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  auto* content = new QWidget(scroll);
+  auto* outer = new QVBoxLayout(content);
 
-  auto* shown = new QGroupBox(QStringLiteral("Shown in the 3-D view"), this);
+  auto* shown = new QGroupBox(QStringLiteral("Shown in the 3-D view"), content);
   auto* shown_layout = new QVBoxLayout(shown);
   for (SceneLayer layer : AllSceneLayers()) {
     auto* check = new QCheckBox(LayerLabel(layer), shown);
@@ -34,7 +42,7 @@ LayersPanel::LayersPanel(QWidget* parent) : QWidget(parent) {
   }
   outer->addWidget(shown);
 
-  auto* style = new QGroupBox(QStringLiteral("Colours and frusta"), this);
+  auto* style = new QGroupBox(QStringLiteral("Colours and frusta"), content);
   auto* form = new QFormLayout(style);
   colouring_ = new QComboBox(style);
   colouring_->setObjectName(QStringLiteral("landmarkColouring"));
@@ -71,7 +79,7 @@ LayersPanel::LayersPanel(QWidget* parent) : QWidget(parent) {
   form->addRow(QStringLiteral("Frustum every"), stride_);
   outer->addWidget(style);
 
-  auto* model = new QGroupBox(QStringLiteral("Model placement x_gM"), this);
+  auto* model = new QGroupBox(QStringLiteral("Model placement x_gM"), content);
   auto* model_layout = new QVBoxLayout(model);
   placement_ = new QComboBox(model);
   placement_->setObjectName(QStringLiteral("modelPlacement"));
@@ -81,6 +89,8 @@ LayersPanel::LayersPanel(QWidget* parent) : QWidget(parent) {
   model_layout->addWidget(placement_);
   outer->addWidget(model);
   outer->addStretch(1);
+  scroll->setWidget(content);
+  root->addWidget(scroll);
 
   connect(colouring_, qOverload<int>(&QComboBox::currentIndexChanged), this, &LayersPanel::ReadWidgets);
   connect(auto_range_, &QCheckBox::toggled, this, &LayersPanel::ReadWidgets);

@@ -22,6 +22,7 @@
 #include "geometry/mesh_io.h"
 #include "ui/app_setup.h"
 #include "ui/document_controller.h"
+#include "ui/inspection_controller.h"
 #include "ui/job_runner.h"
 #include "ui/job_status_widget.h"
 #include "ui/layers_panel.h"
@@ -49,6 +50,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   session_ = new Session(this);
   jobs_ = new JobRunner(this);
   documents_ = new DocumentController(session_, jobs_, this);
+  inspection_ = new InspectionController(session_, jobs_, this);
   recent_ = new RecentFiles(this);
 
   scene_ = new SceneView(this);
@@ -57,9 +59,14 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   active_view_ = scene_;
 
   CreateDocks();
+  CreateResultDocks();
   CreateMenus();
   ConnectSession();
+  ConnectResults();
 
+  results_label_ = new QLabel(this);
+  results_label_->setObjectName(QStringLiteral("resultsLabel"));
+  statusBar()->addPermanentWidget(results_label_);
   placement_label_ = new QLabel(this);
   placement_label_->setObjectName(QStringLiteral("placementLabel"));
   statusBar()->addPermanentWidget(placement_label_);
@@ -115,7 +122,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   UpdatePlacement();
   UpdateTitle();
-  UpdateActions();
+  UpdateResults();
   resize(1280, 860);
 }
 
@@ -171,6 +178,7 @@ void MainWindow::CreateMenus() {
   file->addAction(NewAction(
       QStringLiteral("openProject"), QStringLiteral("Open &project…"), this, [this] { AskOpenProject(); },
       QKeySequence(Qt::CTRL | Qt::SHIFT | Qt::Key_O)));
+  AddResultFileEntries(file);
   file->addSeparator();
   file->addAction(NewAction(
       QStringLiteral("saveProject"), QStringLiteral("&Save project"), this, [this] { AskSaveProject(); },
@@ -185,6 +193,7 @@ void MainWindow::CreateMenus() {
   QMenu* exports = file->addMenu(QStringLiteral("&Export"));
   exports->addAction(NewAction(QStringLiteral("exportPlacedHull"), QStringLiteral("&Hull placed in the survey frame…"),
                                this, [this] { AskExportHull(); }));
+  AddResultExportEntries(exports);
   file->addSeparator();
   file->addAction(NewAction(
       QStringLiteral("quit"), QStringLiteral("&Quit"), this, [this] { close(); }, QKeySequence::Quit));
@@ -198,6 +207,8 @@ void MainWindow::CreateMenus() {
   redo->setShortcut(QKeySequence::Redo);
   edit->addAction(undo);
   edit->addAction(redo);
+
+  CreateInspectionMenu();
 
   view_menu_ = menuBar()->addMenu(QStringLiteral("&View"));
   dock_toggles_end_ = view_menu_->addSeparator();
@@ -215,6 +226,7 @@ void MainWindow::CreateMenus() {
 
   QMenu* help = menuBar()->addMenu(QStringLiteral("&Help"));
   help->addAction(NewAction(QStringLiteral("openDemo"), QStringLiteral("Open &demo"), this, [this] { OpenDemo(); }));
+  AddResultHelpEntries(help);
   help->addAction(
       NewAction(QStringLiteral("about"), QStringLiteral("&About HullInspect"), this, [this] { ShowAbout(); }));
 }
@@ -244,6 +256,8 @@ void MainWindow::ConnectSession() {
     UpdatePlacement();
   });
   connect(session_, &Session::projectPathChanged, this, [this] { UpdateTitle(); });
+  connect(inspection_, &InspectionController::stateChanged, this, &MainWindow::UpdateResults);
+  connect(parameters_, &ParameterPanel::parametersChanged, inspection_, &InspectionController::SetParameters);
   connect(layers_, &LayersPanel::optionsChanged, this, [this](const SceneOptions& options) {
     scene_->SetOptions(options);
     const auto [lo, hi] = scene_->LegendRange();
@@ -288,6 +302,16 @@ void MainWindow::UpdateTitle() {
 
 void MainWindow::UpdateActions() {
   if (QAction* a = action(QStringLiteral("exportPlacedHull"))) a->setEnabled(session_->mesh().has_value());
+  UpdateResultActions();
+}
+
+void MainWindow::UpdateResults() {
+  const QString text = inspection_->StatusText();
+  results_label_->setText(text);
+  results_label_->setVisible(!text.isEmpty());
+  results_label_->setStyleSheet(inspection_->UpToDate() || text.isEmpty() ? QString()
+                                                                          : QStringLiteral("color: #b9770e;"));
+  UpdateActions();
 }
 
 void MainWindow::RebuildRecentMenu() {
@@ -328,8 +352,9 @@ void MainWindow::OpenDemo() {
 
 bool MainWindow::SaveProject(const QString& path) { return documents_->SaveProject(path); }
 
-QImage MainWindow::GrabActiveView() {
-  QWidget* view = active_view_ ? active_view_.data() : scene_;
+QImage MainWindow::GrabActiveView() { return GrabView(active_view_ ? active_view_.data() : scene_); }
+
+QImage MainWindow::GrabView(QWidget* view) {
   if (view == scene_) return scene_->Grab();
   return view->grab().toImage();
 }
@@ -430,13 +455,14 @@ void MainWindow::dropEvent(QDropEvent* event) {
 
 void MainWindow::showEvent(QShowEvent* event) {
   QMainWindow::showEvent(event);
-  if (initial_docks_.size() != 3) return;
+  if (initial_docks_.size() != 4) return;
   // Dock sizes once the window has its size: most of the room for the scene.
   const std::vector<QDockWidget*> docks = std::move(initial_docks_);
   initial_docks_.clear();
   QTimer::singleShot(0, this, [this, docks] {
     resizeDocks({docks[0], docks[1]}, {300, 340}, Qt::Horizontal);
     resizeDocks({docks[1], docks[2]}, {500, 260}, Qt::Vertical);
+    resizeDocks({docks[3]}, {300}, Qt::Vertical);  // the result views under the scene
   });
 }
 

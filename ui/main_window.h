@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "ui/command_line.h"
+#include "ui/report_source.h"
 
 class QAction;
 class QDockWidget;
@@ -22,15 +23,22 @@ class QMenu;
 
 namespace hull::ui {
 
+class CrossSectionView;
 class DocumentController;
+class InspectionController;
 class JobRunner;
 class JobStatusWidget;
+class KeyframeView;
 class LayersPanel;
+class ObjectsPanel;
 class ParameterPanel;
 class PickInfoPanel;
 class RecentFiles;
+class ResultExporter;
 class SceneView;
 class Session;
+class SolverPlotsView;
+class SonarPanel;
 class SurveySummaryPanel;
 
 // Receives every error the window reports (title, message naming the file,
@@ -57,6 +65,12 @@ class MainWindow : public QMainWindow {
   bool SaveProject(const QString& path);
   // PNG of the active view: the 3-D scene, or the dock that has the focus.
   bool SaveScreenshot(const QString& path);
+  // A PNG of every view (<objectName>.png) into a folder; the paths written.
+  QStringList SaveAllScreenshots(const QString& directory);
+  QImage GrabView(QWidget* view);
+  // What a report needs of the current state (nullopt before the first run):
+  // see report_source.h.
+  std::optional<ReportSource> CollectReport() const;
   QImage GrabActiveView();
   void SetActiveView(QWidget* view);
   QWidget* activeView() const { return active_view_; }
@@ -68,13 +82,21 @@ class MainWindow : public QMainWindow {
   Session* session() const { return session_; }
   JobRunner* jobs() const { return jobs_; }
   DocumentController* documents() const { return documents_; }
+  InspectionController* inspection() const { return inspection_; }
   SceneView* sceneView() const { return scene_; }
   LayersPanel* layersPanel() const { return layers_; }
   ParameterPanel* parameterPanel() const { return parameters_; }
   PickInfoPanel* pickInfoPanel() const { return pick_info_; }
   SurveySummaryPanel* surveyPanel() const { return summary_; }
+  CrossSectionView* crossSectionView() const { return cross_section_; }
+  SolverPlotsView* solverPlotsView() const { return solver_plots_; }
+  ObjectsPanel* objectsPanel() const { return objects_; }
+  KeyframeView* keyframeView() const { return keyframe_view_; }
+  SonarPanel* sonarPanel() const { return sonar_; }
+  ResultExporter* exporter() const { return exporter_; }
   JobStatusWidget* jobStatus() const { return job_status_; }
   QLabel* placementLabel() const { return placement_label_; }
+  QLabel* resultsLabel() const { return results_label_; }
   QAction* action(const QString& object_name) const;
 
  protected:
@@ -87,10 +109,22 @@ class MainWindow : public QMainWindow {
   void CreateDocks();
   void CreateMenus();
   void ConnectSession();
+  // The inspection's result views, menus and exports (main_window_results.cc).
+  void CreateResultDocks();
+  void ConnectResults();
+  void CreateInspectionMenu();
+  void AddResultFileEntries(QMenu* file);
+  void AddResultExportEntries(QMenu* exports);
+  void AddResultHelpEntries(QMenu* help);
+  void UpdateResultActions();
+  void AskOpenSonarSequence();
+  void AskExportResult(const QString& what);
+  void AskExportScreenshots();
   void RebuildRecentMenu();
   void UpdatePlacement();
   void UpdateTitle();
   void UpdateActions();
+  void UpdateResults();
   QAction* NewAction(const QString& name, const QString& text, QObject* receiver, std::function<void()> slot,
                      const QKeySequence& shortcut = {});
 
@@ -107,14 +141,23 @@ class MainWindow : public QMainWindow {
   Session* session_ = nullptr;
   JobRunner* jobs_ = nullptr;
   DocumentController* documents_ = nullptr;
+  InspectionController* inspection_ = nullptr;
   RecentFiles* recent_ = nullptr;
   SceneView* scene_ = nullptr;
   LayersPanel* layers_ = nullptr;
   ParameterPanel* parameters_ = nullptr;
   PickInfoPanel* pick_info_ = nullptr;
   SurveySummaryPanel* summary_ = nullptr;
+  CrossSectionView* cross_section_ = nullptr;
+  SolverPlotsView* solver_plots_ = nullptr;
+  ObjectsPanel* objects_ = nullptr;
+  KeyframeView* keyframe_view_ = nullptr;
+  SonarPanel* sonar_ = nullptr;
+  ResultExporter* exporter_ = nullptr;
+  bool selecting_from_pick_ = false;  // a row selected by a pick in the scene: no flight
   JobStatusWidget* job_status_ = nullptr;
   QLabel* placement_label_ = nullptr;
+  QLabel* results_label_ = nullptr;
   QMenu* view_menu_ = nullptr;
   QMenu* recent_menu_ = nullptr;
   QAction* dock_toggles_end_ = nullptr;      // separator after the dock toggles in View

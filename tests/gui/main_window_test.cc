@@ -364,12 +364,13 @@ class MainWindowTest : public QObject {
     QVERIFY(win.w.SaveScreenshot(scene_png));
     QImage image(scene_png);
     QCOMPARE(image.size(), win.w.sceneView()->size());
-    // Not a blank frame: the hull and the overlays give many colours.
+    // Not a blank frame: the hull and each overlay give their colours (the
+    // views draw without antialiasing: about one colour per layer).
     QSet<QRgb> colours;
     for (int y = 0; y < image.height(); y += 4) {
       for (int x = 0; x < image.width(); x += 4) colours.insert(image.pixel(x, y));
     }
-    QVERIFY2(colours.size() > 20, qPrintable(QString::number(colours.size())));
+    QVERIFY2(colours.size() > 5, qPrintable(QString::number(colours.size())));
 
     win.w.SetActiveView(win.w.parameterPanel());
     const QString panel_png = dir.filePath(QStringLiteral("parameters.png"));
@@ -399,7 +400,7 @@ class MainWindowTest : public QObject {
     };
     const QRect scene_rect(win.w.sceneView()->mapTo(&win.w, QPoint(0, 0)), win.w.sceneView()->size());
     QImage first = win.w.grab().toImage();
-    QVERIFY(colourful(first, scene_rect) > 30);
+    QVERIFY(colourful(first, scene_rect) > 5);
     QVERIFY(first.save(hull::ui::testing::OutputDir() + QStringLiteral("/user_guide_demo.png")));
 
     auto* colouring = win.w.layersPanel()->colouringBox();
@@ -416,7 +417,7 @@ class MainWindowTest : public QObject {
     QVERIFY(win.w.pickInfoPanel()->isVisible());
     QTest::qWait(300);
     const QImage second = win.w.grab().toImage();
-    QVERIFY(colourful(second, scene_rect) > 30);
+    QVERIFY(colourful(second, scene_rect) > 5);
     QVERIFY(second != first);
     QVERIFY(second.save(hull::ui::testing::OutputDir() + QStringLiteral("/user_guide_deviation.png")));
   }

@@ -1,0 +1,109 @@
+// The sonar dock: Help ▸ Open sonar demo simulates the paper's prism and
+// runs the EKF in a worker; the view shows the true, first and estimated
+// feature points and the trajectory with its ellipsoids; playing steps
+// through the sequence and moves the error plots' marker; switching the
+// initialisation runs the filter again; File ▸ Open sonar sequence reads a
+// folder, and a broken one is reported naming the file.
+#include <QAction>
+#include <QComboBox>
+#include <QDockWidget>
+#include <QSignalSpy>
+#include <QTemporaryDir>
+
+#include "gui_test_support.h"
+#include "simulate/sonar_simulator.h"
+#include "ui/main_window.h"
+#include "ui/plot_widget.h"
+#include "ui/sonar_panel.h"
+#include "ui/sonar_view.h"
+
+using namespace hull::ui;
+using hull::ui::testing::OutputDir;
+
+class SonarTest : public QObject {
+  Q_OBJECT
+
+ private slots:
+  void theDemoPlaysStepByStep() {
+    MainWindow w;
+    QStringList errors;
+    w.SetErrorSink([&](const QString& t, const QString& m) { errors << t + ": " + m; });
+    w.setFixedSize(1280, 900);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    SonarPanel* panel = w.sonarPanel();
+    QSignalSpy changed(panel, &SonarPanel::runChanged);
+    w.action(QStringLiteral("openSonarDemoPrism"))->trigger();
+    QVERIFY(w.jobs()->IsBusy(SonarPanel::kSonarJob));
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+    QCOMPARE(changed.count(), 1);
+    const auto run = panel->run();
+    QVERIFY(run && run->result.has_truth);
+    QCOMPARE(run->steps(), 21);   // the paper's T = 21
+    QCOMPARE(panel->step(), 20);  // opens on the last step
+    // The paper's simulation: the features end within about a centimetre,
+    // the EKF's pose beats dead reckoning.
+    const auto& last = *run->result.steps.back().errors;
+    QVERIFY2(last.mean_feature_error < 0.03, qPrintable(QString::number(last.mean_feature_error)));
+    QVERIFY(last.position < last.dr_position);
+    SonarView::Counts c = panel->view()->counts();
+    QCOMPARE(c.true_features, 8);
+    QCOMPARE(c.estimated, 8);
+    QCOMPARE(c.feature_ellipsoids, 8);
+    QCOMPARE(c.pose_ellipsoids, 21);
+    QVERIFY(panel->featurePlot()->HasPoints() && panel->positionPlot()->HasPoints());
+
+    // Playing from the start: the step advances on its own, the view and the
+    // plots' marker follow.
+    panel->SetStep(0);
+    QCOMPARE(panel->view()->counts().pose_ellipsoids, 1);
+    panel->Play();
+    QVERIFY(panel->playing());
+    QTRY_VERIFY_WITH_TIMEOUT(panel->step() >= 3, 5000);
+    panel->Pause();
+    const int step = panel->step();
+    QTest::qWait(700);
+    QCOMPARE(panel->step(), step);
+    QCOMPARE(panel->view()->counts().pose_ellipsoids, step + 1);
+    QCOMPARE(panel->featurePlot()->data().markers.front().x, static_cast<double>(step));
+
+    // The paper's initialisation: the filter runs again.
+    panel->SetStep(20);
+    QVERIFY(panel->grab().toImage().save(OutputDir() + QStringLiteral("/sonar_panel.png")));
+    panel->initBox()->setCurrentIndex(panel->initBox()->findData(static_cast<int>(hull::SonarInit::kPaper)));
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QVERIFY(panel->run() != run);
+    QCOMPARE(panel->run()->result.options.init, hull::SonarInit::kPaper);
+    QVERIFY(errors.isEmpty());
+  }
+
+  void aSequenceFolderOpensAndABrokenOneIsReported() {
+    QTemporaryDir dir;
+    const QString tank = dir.filePath(QStringLiteral("tank"));
+    hull::WriteAcousticSequence(hull::SimulateSonarPreset("tank", 3), QFile::encodeName(tank).toStdString());
+    MainWindow w;
+    QStringList errors;
+    w.SetErrorSink([&](const QString& t, const QString& m) { errors << t + ": " + m; });
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.sonarPanel()->OpenSequence(tank);
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+    QCOMPARE(w.sonarPanel()->run()->steps(), 8);
+    const auto good = w.sonarPanel()->run();
+
+    QFile measurements(tank + QStringLiteral("/measurements.csv"));
+    QVERIFY(measurements.open(QIODevice::WriteOnly | QIODevice::Truncate));
+    measurements.write("step,feature,range,azimuth\n0,0,far,0.1\n");
+    measurements.close();
+    w.sonarPanel()->OpenSequence(tank);
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QCOMPARE(errors.size(), 1);
+    QVERIFY2(errors[0].contains(QStringLiteral("measurements.csv")), qPrintable(errors[0]));
+    QCOMPARE(w.sonarPanel()->run(), good);  // the last good run stays
+  }
+};
+
+HI_GUI_TEST_MAIN(SonarTest)
+#include "sonar_test.moc"
