@@ -75,10 +75,11 @@ MappingOverlays ComputeMappingOverlays(const MappingResult& result, const Triang
   const TriangleMesh& model = result.model;
   for (const DetectedObject& o : result.objects) {
     const std::unordered_set<int> inside(o.vertices.begin(), o.vertices.end());
-    // Edges of the faces wholly above h_min; those used once bound the footprint.
+    // Edges of the faces touching a vertex above h_min; those used once
+    // bound the footprint (just outside it, so that it shows whole).
     std::map<std::pair<int, int>, int> edges;
     for (const Face& f : model.faces) {
-      if (!inside.count(f[0]) || !inside.count(f[1]) || !inside.count(f[2])) continue;
+      if (!inside.count(f[0]) && !inside.count(f[1]) && !inside.count(f[2])) continue;
       for (int e = 0; e < 3; ++e) {
         const int a = f[e], b = f[(e + 1) % 3];
         ++edges[{std::min(a, b), std::max(a, b)}];

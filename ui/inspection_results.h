@@ -64,9 +64,10 @@ struct AdjustmentRun {
 
 // What the views draw of a mapping result besides the result itself.
 struct MappingOverlays {
-  // Per detected object (as MappingResult::objects): the boundary of its
-  // footprint on the fused model (segments in M) and the radius of a sphere
-  // about its centroid holding the footprint (m).
+  // Per detected object (as MappingResult::objects): the outline of its
+  // footprint on the fused model (segments in M: the boundary of the faces
+  // touching its vertices) and the radius of a sphere about its centroid
+  // holding the footprint (m).
   std::vector<std::vector<std::array<Eigen::Vector3d, 2>>> object_outlines;
   std::vector<double> object_radius;
   // Per zone (HullFrame::ZoneIndex): the area-weighted centre of its CAD

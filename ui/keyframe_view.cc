@@ -173,7 +173,8 @@ void KeyframeView::Populate() {
   const auto& keyframes = mapping_->result->keyframes;
   for (int i = 0; i < static_cast<int>(keyframes.size()); ++i) {
     if (keyframes[i].shapes.empty()) continue;
-    box_->addItem(QStringLiteral("%1 (%2 shapes)").arg(keyframes[i].id).arg(keyframes[i].shapes.size()), i);
+    const std::size_t n = keyframes[i].shapes.size();
+    box_->addItem(QStringLiteral("%1 (%2 shape%3)").arg(keyframes[i].id).arg(n).arg(n == 1 ? "" : "s"), i);
   }
 }
 
@@ -199,7 +200,7 @@ void KeyframeView::ShowKeyframe(int index) {
     clustered += q.cluster >= 0;
     noise += q.cluster == ShapePoint::kNoise;
   }
-  info_->setText(QStringLiteral("Keyframe %1: %2 features seen, %3 in %4 alpha shapes, %5 isolated (ringed); grey "
+  info_->setText(QStringLiteral("Keyframe %1: %2 features seen, %3 in %4 alpha shape(s), %5 isolated (ringed); grey "
                                 "ones are within τ of the CAD surface.")
                      .arg(k.id)
                      .arg(k.points.size())

@@ -8,17 +8,18 @@ namespace hull::ui {
 namespace {
 
 enum ObjectColumn { kId, kFromBow, kStation, kSide, kArea, kMean, kMax, kFeatures, kViews, kObjectColumns };
+// The rating first after the zone: what an inspector looks for.
 enum ZoneColumn {
   kZStation,
   kZSide,
   kZExtent,
-  kZHull,
+  kZRating,
+  kZCover,
   kZInspected,
   kZCovered,
-  kZCover,
+  kZHull,
   kZObjects,
   kZMaxHeight,
-  kZRating,
   kZoneColumns
 };
 
@@ -138,10 +139,10 @@ int ZonesTableModel::columnCount(const QModelIndex& parent) const { return paren
 QVariant ZonesTableModel::headerData(int section, Qt::Orientation orientation, int role) const {
   if (orientation != Qt::Horizontal || role != Qt::DisplayRole) return {};
   static const QStringList headers = {QStringLiteral("Station"),         QStringLiteral("Side"),
-                                      QStringLiteral("From–to bow (m)"), QStringLiteral("Hull (m²)"),
-                                      QStringLiteral("Inspected (m²)"),  QStringLiteral("Covered (m²)"),
-                                      QStringLiteral("Cover (%)"),       QStringLiteral("Objects"),
-                                      QStringLiteral("Max height (mm)"), QStringLiteral("Rating")};
+                                      QStringLiteral("From–to bow (m)"), QStringLiteral("Rating"),
+                                      QStringLiteral("Cover (%)"),       QStringLiteral("Inspected (m²)"),
+                                      QStringLiteral("Covered (m²)"),    QStringLiteral("Hull (m²)"),
+                                      QStringLiteral("Objects"),         QStringLiteral("Max height (mm)")};
   return headers.value(section);
 }
 

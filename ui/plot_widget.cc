@@ -84,8 +84,9 @@ void PlotWidget::paintEvent(QPaintEvent*) {
   const QColor grid = pal.color(QPalette::Mid).lighter(150);
   const QFontMetrics fm(font());
 
-  const int top = data_.title.isEmpty() ? 10 : fm.height() + 12;
-  const int left = 70, right = 14, bottom = fm.height() * 2 + 14;
+  const int top = (data_.title.isEmpty() ? 10 : fm.height() + 12) + (data_.note.isEmpty() ? 0 : fm.height() + 2);
+  const int left = 70, right = 14;
+  const int bottom = fm.height() * (data_.x_categories.isEmpty() ? 2 : 3) + 14;
   const QRectF area(left, top, std::max(10, width() - left - right), std::max(10, height() - top - bottom));
 
   if (!data_.title.isEmpty()) {
@@ -95,6 +96,11 @@ void PlotWidget::paintEvent(QPaintEvent*) {
     p.setPen(text);
     p.drawText(QRectF(0, 4, width(), fm.height() + 4), Qt::AlignHCenter | Qt::AlignTop, data_.title);
     p.setFont(font());
+  }
+  if (!data_.note.isEmpty()) {
+    p.setPen(pal.color(QPalette::PlaceholderText));
+    p.drawText(QRectF(4, fm.height() + 8, width() - 8, fm.height() + 2), Qt::AlignHCenter | Qt::AlignTop,
+               fm.elidedText(data_.note, Qt::ElideRight, width() - 8));
   }
   auto ty = [this](double y) { return data_.log_y ? (y > 0 ? std::log10(y) : NAN) : y; };
 
@@ -179,10 +185,11 @@ void PlotWidget::paintEvent(QPaintEvent*) {
   }
   if (!data_.x_categories.isEmpty()) {
     p.setPen(text);
+    const double spacing = X(1) - X(0) - 4;
     for (int i = 0; i < data_.x_categories.size(); ++i) {
       if (i < xr.lo || i > xr.hi) continue;
-      p.drawText(QRectF(X(i) - 80, area.bottom() + 3, 160, 2 * fm.height()), Qt::AlignHCenter | Qt::AlignTop,
-                 data_.x_categories[i]);
+      p.drawText(QRectF(X(i) - spacing / 2, area.bottom() + 3, spacing, 3 * fm.height()),
+                 Qt::AlignHCenter | Qt::AlignTop | Qt::TextWordWrap, data_.x_categories[i]);
     }
   } else {
     const std::vector<double> xticks = NiceTicks(xr.lo, xr.hi, std::max(2, static_cast<int>(area.width() / 70)));
@@ -283,44 +290,59 @@ void PlotWidget::paintEvent(QPaintEvent*) {
   p.setPen(pal.color(QPalette::Mid));
   p.drawRect(area);
 
-  // Legend (top right, inside) and note.
+  // The legend: in the corner of the area that hides the fewest data points.
+  const double y0 = area.top() + 4;
   int rows = 0, legend_width = 0;
+  const int max_text = static_cast<int>(0.62 * area.width()) - 34;
   for (const PlotSeries& s : data_.series) {
     if (s.name.isEmpty()) continue;
     ++rows;
-    legend_width = std::max(legend_width, fm.horizontalAdvance(s.name));
+    legend_width = std::max(legend_width, std::min(max_text, fm.horizontalAdvance(s.name)));
   }
-  double y0 = area.top() + 6;
-  if (!data_.note.isEmpty()) {
-    p.setPen(text);
-    p.drawText(QRectF(area.left() + 6, area.top() + 4, area.width() - 12, fm.height()), Qt::AlignRight, data_.note);
-    y0 += fm.height() + 2;
-  }
-  if (rows > 0) {
-    const QRectF box(area.right() - legend_width - 40, y0, legend_width + 34, rows * (fm.height() + 2) + 6);
-    QColor bg = pal.color(QPalette::Base);
-    bg.setAlpha(220);
-    p.fillRect(box, bg);
-    p.setPen(pal.color(QPalette::Mid));
-    p.drawRect(box);
-    double y = box.top() + 3;
+  if (rows == 0) return;
+  const QSizeF size(legend_width + 34, rows * (fm.height() + 2) + 6);
+  const QRectF corners[4] = {QRectF(QPointF(area.right() - size.width() - 4, y0), size),
+                             QRectF(QPointF(area.left() + 4, y0), size),
+                             QRectF(QPointF(area.right() - size.width() - 4, area.bottom() - size.height() - 4), size),
+                             QRectF(QPointF(area.left() + 4, area.bottom() - size.height() - 4), size)};
+  int best = 0, fewest = -1;
+  for (int c = 0; c < 4; ++c) {
+    int hidden = 0;
     for (const PlotSeries& s : data_.series) {
-      if (s.name.isEmpty()) continue;
-      QPen pen(s.colour, std::max(2.0, s.width));
-      if (s.dashed) pen.setStyle(Qt::DashLine);
-      p.setPen(pen);
-      const double cy = y + fm.height() / 2.0;
-      if (s.style == PlotSeries::Style::kPoints) {
-        p.setBrush(s.colour);
-        p.drawEllipse(QPointF(box.left() + 14, cy), 3, 3);
-        p.setBrush(Qt::NoBrush);
-      } else {
-        p.drawLine(QPointF(box.left() + 5, cy), QPointF(box.left() + 23, cy));
+      for (const QPointF& q : s.points) {
+        const double y = ty(q.y());
+        if (std::isfinite(y) && corners[c].contains(QPointF(X(q.x()), Y(y)))) ++hidden;
       }
-      p.setPen(text);
-      p.drawText(QRectF(box.left() + 28, y, legend_width + 4, fm.height()), Qt::AlignLeft | Qt::AlignVCenter, s.name);
-      y += fm.height() + 2;
     }
+    if (fewest < 0 || hidden < fewest) {
+      fewest = hidden;
+      best = c;
+    }
+  }
+  const QRectF box = corners[best];
+  QColor bg = pal.color(QPalette::Base);
+  bg.setAlpha(225);
+  p.fillRect(box, bg);
+  p.setPen(pal.color(QPalette::Mid));
+  p.drawRect(box);
+  double y = box.top() + 3;
+  for (const PlotSeries& s : data_.series) {
+    if (s.name.isEmpty()) continue;
+    QPen pen(s.colour, std::max(2.0, s.width));
+    if (s.dashed) pen.setStyle(Qt::DashLine);
+    p.setPen(pen);
+    const double cy = y + fm.height() / 2.0;
+    if (s.style == PlotSeries::Style::kPoints) {
+      p.setBrush(s.colour);
+      p.drawEllipse(QPointF(box.left() + 14, cy), 3, 3);
+      p.setBrush(Qt::NoBrush);
+    } else {
+      p.drawLine(QPointF(box.left() + 5, cy), QPointF(box.left() + 23, cy));
+    }
+    p.setPen(text);
+    p.drawText(QRectF(box.left() + 28, y, legend_width + 4, fm.height()), Qt::AlignLeft | Qt::AlignVCenter,
+               fm.elidedText(s.name, Qt::ElideRight, legend_width + 2));
+    y += fm.height() + 2;
   }
 }
 

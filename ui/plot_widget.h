@@ -50,7 +50,7 @@ struct PlotData {
   QStringList x_categories;
   // Shown in the middle when no series has points.
   QString empty_text;
-  // A line of text in the top-right corner (e.g. a summary).
+  // A line of text under the title (e.g. a summary).
   QString note;
 };
 

@@ -133,14 +133,14 @@ PlotData TimePlot(const RunsByModel& runs) {
     ++x;
   }
   d.x_range = std::make_pair(-0.6, 2.6);
-  if (!notes.isEmpty()) d.note = QStringLiteral("vs naive: ") + notes.join(QStringLiteral(", "));
+  if (!notes.isEmpty()) d.note = QStringLiteral("vs naive: ") + notes.join(QStringLiteral(" / "));
   return d;
 }
 
 PlotData DvlResidualPlot(const std::shared_ptr<const AdjustmentRun>& run) {
   PlotData d;
   d.title = QStringLiteral("DVL range residuals");
-  d.x_label = QStringLiteral("measured − predicted range (m)");
+  d.x_label = QStringLiteral("measured − predicted (m)");
   d.y_label = QStringLiteral("beams");
   d.empty_text = QStringLiteral("Run the inspection (F5)");
   if (!run) return d;
@@ -162,7 +162,7 @@ PlotData DvlResidualPlot(const std::shared_ptr<const AdjustmentRun>& run) {
   const double width = 2 * reach / bins;
   auto histogram = [&](const std::vector<double>& values, const QString& name, const QColor& colour) {
     PlotSeries s;
-    s.name = QStringLiteral("%1 (spread %2 cm)").arg(name).arg(100.0 * RobustSpread(values), 0, 'f', 2);
+    s.name = QStringLiteral("%1: %2 cm").arg(name).arg(100.0 * RobustSpread(values), 0, 'f', 2);
     s.colour = colour;
     s.style = PlotSeries::Style::kHistogram;
     s.bin_width = width;
@@ -174,8 +174,9 @@ PlotData DvlResidualPlot(const std::shared_ptr<const AdjustmentRun>& run) {
     for (int b = 0; b < bins; ++b) s.points.emplace_back(-reach + b * width, counts[b]);
     return s;
   };
-  d.series.push_back(histogram(initial, QStringLiteral("initial alignment"), QColor(150, 150, 150)));
-  d.series.push_back(histogram(final, QStringLiteral("after adjustment"), ModelColour(run->model())));
+  d.series.push_back(histogram(initial, QStringLiteral("aligned"), QColor(150, 150, 150)));
+  d.series.push_back(histogram(final, QStringLiteral("adjusted"), ModelColour(run->model())));
+  d.note = QStringLiteral("robust spread (1.48 MAD)");
   d.x_range = std::make_pair(-reach, reach);
   return d;
 }
@@ -195,11 +196,11 @@ PlotData MixturePlot(double sigma0, double sigma1) {
   const double b = o.DecisionBoundary();
   const double reach = 3.0 * b;
   PlotSeries c0, c1, mix;
-  c0.name = QStringLiteral("λ = 0: σ₀ = %1 m").arg(sigma0, 0, 'g', 3);
+  c0.name = QStringLiteral("λ = 0, σ₀ %1 m").arg(sigma0, 0, 'g', 3);
   c0.colour = QColor(220, 60, 60);
-  c1.name = QStringLiteral("λ = 1: σ₁ = %1 m").arg(sigma1, 0, 'g', 3);
+  c1.name = QStringLiteral("λ = 1, σ₁ %1 m").arg(sigma1, 0, 'g', 3);
   c1.colour = QColor(40, 170, 70);
-  mix.name = QStringLiteral("max-mixture (the smaller)");
+  mix.name = QStringLiteral("max-mixture");
   mix.colour = QColor(30, 30, 30);
   mix.dashed = true;
   mix.width = 1.2;
@@ -215,12 +216,12 @@ PlotData MixturePlot(double sigma0, double sigma1) {
   }
   d.series = {c0, c1, mix};
   d.markers.push_back({-b, QString(), QColor(90, 90, 90)});
-  d.markers.push_back({b, QStringLiteral("±%1 cm").arg(100.0 * b, 0, 'f', 2), QColor(90, 90, 90)});
+  d.markers.push_back({b, QString(), QColor(90, 90, 90)});
   // Up to twice the height at the boundary: the crossing stays in view.
   const double at_b = NegLogNormal(b, sigma0);
   d.y_range = std::make_pair(lo - 0.1 * (at_b - lo + 1), at_b + 1.2 * (at_b - lo) + 1.0);
   d.x_range = std::make_pair(-reach, reach);
-  d.note = QStringLiteral("decision boundary |h| = %1 m").arg(b, 0, 'f', 4);
+  d.note = QStringLiteral("boundary |h| = %1 m").arg(b, 0, 'f', 4);
   return d;
 }
 

@@ -33,10 +33,12 @@ SolverPlotsView::SolverPlotsView(QWidget* parent) : QWidget(parent) {
   time_->setObjectName(QStringLiteral("timePlot"));
   dvl_->setObjectName(QStringLiteral("dvlResidualPlot"));
   mixture_->setObjectName(QStringLiteral("mixturePlot"));
-  int column = 0;
+  // Three to a row: each wide enough for its legend; the dock scrolls when short.
+  int i = 0;
   for (PlotWidget* plot : {fraction_, cost_, time_, dvl_, mixture_}) {
-    plot->setMinimumWidth(250);
-    grid->addWidget(plot, 0, column++);
+    plot->setMinimumSize(330, 220);
+    grid->addWidget(plot, i / 3, i % 3);
+    ++i;
   }
   scroll->setWidget(grid_host);
   outer->addWidget(scroll, 1);

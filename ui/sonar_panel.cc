@@ -98,6 +98,11 @@ SonarPanel::SonarPanel(JobRunner* jobs, QWidget* parent) : QWidget(parent), jobs
   row->addWidget(step_label_);
   row->addWidget(new QLabel(QStringLiteral("ellipsoids 3σ"), this));
   row->addWidget(scale_);
+  look_ = new QComboBox(this);
+  look_->setObjectName(QStringLiteral("sonarLook"));
+  look_->addItem(QStringLiteral("Look at the features"));
+  look_->addItem(QStringLiteral("Look at the whole run"));
+  row->addWidget(look_);
   outer->addLayout(row);
 
   auto* split = new QSplitter(Qt::Horizontal, this);
@@ -112,6 +117,7 @@ SonarPanel::SonarPanel(JobRunner* jobs, QWidget* parent) : QWidget(parent), jobs
       "&nbsp; <span style='color:#ff4033'>●</span> estimate (3σ ellipsoids) &nbsp; trajectory: "
       "<span style='color:#33d94d'>━</span> true <span style='color:#a6a6a6'>━</span> dead reckoning "
       "<span style='color:#ff4d40'>━</span> EKF"));
+  legend->setWordWrap(true);
   left_layout->addWidget(legend);
   auto* plots = new QWidget(split);
   auto* grid = new QGridLayout(plots);
@@ -129,6 +135,7 @@ SonarPanel::SonarPanel(JobRunner* jobs, QWidget* parent) : QWidget(parent), jobs
   split->addWidget(plots);
   split->setStretchFactor(0, 2);
   split->setStretchFactor(1, 3);
+  split->setSizes({500, 780});
   outer->addWidget(split, 1);
   status_ = new QLabel(this);
   status_->setObjectName(QStringLiteral("sonarStatus"));
@@ -148,6 +155,8 @@ SonarPanel::SonarPanel(JobRunner* jobs, QWidget* parent) : QWidget(parent), jobs
     if (value != step_) SetStep(value);
   });
   connect(scale_, qOverload<double>(&QDoubleSpinBox::valueChanged), view_, &SonarView::SetEllipsoidScale);
+  connect(look_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this](int index) { view_->ResetCamera(index == 1); });
   connect(init_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] {
     if (run_) Start(run_->sequence, QString::fromStdString(run_->name));
   });
@@ -198,6 +207,7 @@ void SonarPanel::SetRun(std::shared_ptr<const SonarRun> run) {
   step_ = run_ && run_->steps() > 0 ? run_->steps() - 1 : 0;
   view_->SetRun(run_);
   view_->SetStep(step_);
+  view_->ResetCamera(look_->currentIndex() == 1);
   UpdateControls();
   UpdatePlots();
   emit runChanged();
@@ -264,16 +274,16 @@ void SonarPanel::UpdateControls() {
 void SonarPanel::UpdatePlots() {
   const SonarRun* run = run_.get();
   feature_plot_->SetData(ErrorPlot(
-      run, step_, QStringLiteral("Feature error"), QStringLiteral("m"), QStringLiteral("mean over features"),
-      QColor(220, 60, 50), QStringLiteral("largest"), [](const SonarStepErrors& e) { return e.mean_feature_error; },
+      run, step_, QStringLiteral("Feature error"), QStringLiteral("m"), QStringLiteral("mean"), QColor(220, 60, 50),
+      QStringLiteral("largest"), [](const SonarStepErrors& e) { return e.mean_feature_error; },
       [](const SonarStepErrors& e) { return e.max_feature_error; }));
   position_plot_->SetData(ErrorPlot(
       run, step_, QStringLiteral("Sonar position error"), QStringLiteral("m"), QStringLiteral("EKF"),
-      QColor(220, 60, 50), QStringLiteral("dead reckoning"), [](const SonarStepErrors& e) { return e.position; },
+      QColor(220, 60, 50), QStringLiteral("odometry"), [](const SonarStepErrors& e) { return e.position; },
       [](const SonarStepErrors& e) { return e.dr_position; }));
   orientation_plot_->SetData(ErrorPlot(
       run, step_, QStringLiteral("Sonar orientation error"), QStringLiteral("degrees"), QStringLiteral("EKF"),
-      QColor(220, 60, 50), QStringLiteral("dead reckoning"),
+      QColor(220, 60, 50), QStringLiteral("odometry"),
       [](const SonarStepErrors& e) { return e.rotation * 180.0 / M_PI; },
       [](const SonarStepErrors& e) { return e.dr_rotation * 180.0 / M_PI; }));
 }

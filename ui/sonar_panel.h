@@ -73,6 +73,7 @@ class SonarPanel : public QWidget {
   QSlider* slider_ = nullptr;
   QLabel* step_label_ = nullptr;
   QDoubleSpinBox* scale_ = nullptr;
+  QComboBox* look_ = nullptr;
   SonarView* view_ = nullptr;
   PlotWidget* feature_plot_ = nullptr;
   PlotWidget* position_plot_ = nullptr;

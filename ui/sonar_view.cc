@@ -39,7 +39,7 @@ void SonarView::ScheduleRender() {
 
 void SonarView::SetRun(std::shared_ptr<const SonarRun> run) {
   impl_->SetRun(std::move(run));
-  impl_->ResetCamera();
+  impl_->ResetCamera(false);
   ScheduleRender();
 }
 
@@ -53,8 +53,8 @@ void SonarView::SetEllipsoidScale(double scale) {
   ScheduleRender();
 }
 
-void SonarView::ResetCamera() {
-  impl_->ResetCamera();
+void SonarView::ResetCamera(bool whole_run) {
+  impl_->ResetCamera(whole_run);
   ScheduleRender();
 }
 

@@ -32,7 +32,9 @@ class SonarView : public QWidget {
   // Ellipsoids are drawn at 3 sigma times this factor (small pose
   // uncertainties become visible).
   void SetEllipsoidScale(double scale);
-  void ResetCamera();
+  // Looks at the feature points (the paper's Fig. 8a), or at the whole run
+  // with the trajectory.
+  void ResetCamera(bool whole_run = false);
   QImage Grab();
 
   struct Counts {

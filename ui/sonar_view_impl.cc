@@ -129,12 +129,12 @@ SonarViewImpl::SonarViewImpl() {
     p->LightingOff();
     switch (layer) {
       case kTrueFeatures:
-        p->SetPointSize(12);
+        p->SetPointSize(14);
         p->RenderPointsAsSpheresOn();
         break;
       case kInitial:
       case kEstimated:
-        p->SetPointSize(8);
+        p->SetPointSize(9);
         p->RenderPointsAsSpheresOn();
         break;
       case kFeatureEllipsoids:
@@ -224,9 +224,20 @@ void SonarViewImpl::Rebuild() {
   }
 }
 
-void SonarViewImpl::ResetCamera() {
+void SonarViewImpl::ResetCamera(bool whole_run) {
   if (!run_ || run_->bounds.isEmpty()) return;
-  const Eigen::AlignedBox3d& b = run_->bounds;
+  Eigen::AlignedBox3d b = run_->bounds;
+  if (!whole_run) {
+    Eigen::AlignedBox3d features;
+    for (const auto& p : run_->initial) features.extend(p);
+    if (run_->sequence->truth) {
+      for (const auto& p : run_->sequence->truth->features) features.extend(p);
+    }
+    if (!features.isEmpty()) {
+      const Eigen::Vector3d pad = Eigen::Vector3d::Constant(0.15 * features.sizes().maxCoeff() + 0.05);
+      b = Eigen::AlignedBox3d(features.min() - pad, features.max() + pad);
+    }
+  }
   const Eigen::Vector3d c = b.center();
   vtkCamera* camera = renderer_->GetActiveCamera();
   // From above and behind the start, z down: "up" on screen is -z.

@@ -25,7 +25,7 @@ class SonarViewImpl {
   void SetRun(std::shared_ptr<const SonarRun> run);
   void SetStep(int step);
   void SetEllipsoidScale(double scale);
-  void ResetCamera();
+  void ResetCamera(bool whole_run);
   void Render();
   QImage Grab();
 
