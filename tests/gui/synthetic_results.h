@@ -1,0 +1,20 @@
+// Results made from the synthetic survey's truth without running the
+// solver (adjustment runs of each surface model with a made-up iteration
+// log and DVL residuals) and its mapping by the core Mapper from the truth:
+// deterministic data for the screenshot baselines of the result views.
+#pragma once
+
+#include <memory>
+
+#include "ui/inspection_results.h"
+#include "ui/session.h"
+
+namespace hull::ui::testing {
+
+// The naive run's features sit 15 mm off the hull (misregistered with the
+// DVL, Fig. 14 a-c), all-on-surface squashes them to 30 % of their height.
+std::shared_ptr<const AdjustmentRun> SyntheticRun(SurfaceModel model);
+const Session::ModelRuns& SyntheticRuns();
+std::shared_ptr<const MappingRun> SyntheticMapping();
+
+}  // namespace hull::ui::testing
