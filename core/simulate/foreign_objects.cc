@@ -97,12 +97,15 @@ TriangleMesh MakeObjectMesh(const TrueObject& o, std::uint64_t seed, double sink
         ph[i] = rng.Uniform(0, 2 * M_PI);
       }
       const double rim_ph = rng.Uniform(0, 2 * M_PI);
-      // A smooth bump with lobes; rho^2 keeps the centre exactly at height h.
+      // A lumpy clump (barnacles, tube worms): a broad top falling off
+      // steeply toward the rim, with lobes; rho^2 keeps the centre exactly
+      // at height h, which is the highest point.
       auto top = [=](double rho, double phi) {
         double lobes = 1.0;
         for (int i = 0; i < 3; ++i) lobes += amp[i] * std::sin((i + 2) * phi + ph[i]);
-        const double shape = std::pow(std::max(0.0, 1.0 - rho * rho), 1.5);
-        return h * shape * (1.0 + (lobes - 1.0) * rho * rho);
+        const double r2 = rho * rho;
+        const double shape = std::pow(std::max(0.0, 1.0 - r2 * r2), 1.5);
+        return h * shape * (1.0 + 0.5 * (lobes - 1.0) * r2 * r2);
       };
       auto rim = [=](double phi) { return r * (0.85 + 0.15 * std::sin(2 * phi + rim_ph)); };
       AddHeightfield(m, o.center, e1, e2, n, 8, 32, sink, top, rim);

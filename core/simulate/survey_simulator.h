@@ -50,7 +50,7 @@ struct SurveySimulationOptions {
 
   // Features.
   double hull_feature_density = 25.0;     // per m^2 of salient hull
-  double object_feature_density = 150.0;  // per m^2 of foreign structure (textured)
+  double object_feature_density = 300.0;  // per m^2 of foreign structure (textured)
   double non_salient_fraction = 0.2;      // share of the hull with no features at all
   double detection_probability = 0.85;
   double max_feature_range = 4.0;      // m
