@@ -244,13 +244,10 @@ bool SceneViewImpl::LegendVisible() const {
 std::pair<double, double> SceneViewImpl::EffectiveRange() const {
   if (!options_.auto_range) return {options_.range_min, options_.range_max};
   // Symmetric about zero so that the neutral colour means "on the surface",
-  // reaching the largest |deviation| of what is coloured by it.
+  // reaching the largest |deviation| of the visible layers that carry one.
   double m = 1e-3;
-  if (options_.colouring == LandmarkColouring::kDeviation && TruthDeviationsShown()) {
-    m = std::max({m, std::abs(overlays_->min_deviation), std::abs(overlays_->max_deviation)});
-  }
-  const bool landmarks = options_.colouring == LandmarkColouring::kDeviation;
-  if (landmarks && AdjustedDeviationsShown()) {
+  if (TruthDeviationsShown()) m = std::max({m, std::abs(overlays_->min_deviation), std::abs(overlays_->max_deviation)});
+  if (AdjustedDeviationsShown()) {
     m = std::max({m, std::abs(adjusted_->min_deviation), std::abs(adjusted_->max_deviation)});
   }
   if (HeatmapShown()) {

@@ -23,6 +23,7 @@
 
 #include "geometry/mesh_io.h"
 #include "gui_test_support.h"
+#include "inspection_window.h"
 #include "ui/cross_section_view.h"
 #include "ui/inspection_controller.h"
 #include "ui/job_status_widget.h"
@@ -37,37 +38,15 @@
 #include "ui/scene_view.h"
 #include "ui/session.h"
 #include "ui/solver_plots_view.h"
+#include "ui/sonar_panel.h"
 
 using namespace hull::ui;
 using hull::ui::testing::LoadDemo;
 using hull::ui::testing::OutputDir;
+using hull::ui::testing::Window;
 
 namespace {
 
-class Window {
- public:
-  Window() {
-    w.SetErrorSink([this](const QString& title, const QString& message) { errors << title + ": " + message; });
-    w.setFixedSize(1280, 900);
-    w.show();
-  }
-  // Opens the demo and runs the inspection to the end.
-  bool OpenAndRun() {
-    if (!QTest::qWaitForWindowExposed(&w)) return false;
-    w.OpenDemo();
-    if (!QTest::qWaitFor([this] { return !w.jobs()->IsBusy(); }, 60000)) return false;
-    w.action(QStringLiteral("runInspection"))->trigger();
-    return QTest::qWaitFor([this] { return !w.jobs()->IsBusy(); }, 120000) && w.session()->adjustment() != nullptr;
-  }
-  QDoubleSpinBox* Real(const char* key) {
-    return qobject_cast<QDoubleSpinBox*>(w.parameterPanel()->editor(QString::fromLatin1(key)));
-  }
-  void Raise(QWidget* view) {
-    if (auto* dock = qobject_cast<QDockWidget*>(view->parentWidget())) dock->raise();
-  }
-  MainWindow w;
-  QStringList errors;
-};
 
 // Exports after a run (outside the test class: it may throw, the test catches).
 void ExportChecks() {
