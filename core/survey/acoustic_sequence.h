@@ -15,12 +15,12 @@
 namespace hull {
 
 struct SonarSensor {
-  double range_min = 0.7;        // m
-  double range_max = 5.0;        // m
-  double azimuth_fov = 0.5585;   // full field of view, rad (32 deg)
-  double elevation_fov = 0.2443; // full field of view, rad (14 deg)
-  double range_sigma = 0.01;     // m
-  double azimuth_sigma = 0.0044; // rad
+  double range_min = 0.7;         // m
+  double range_max = 5.0;         // m
+  double azimuth_fov = 0.5585;    // full field of view, rad (32 deg)
+  double elevation_fov = 0.2443;  // full field of view, rad (14 deg)
+  double range_sigma = 0.01;      // m
+  double azimuth_sigma = 0.0044;  // rad
 };
 
 struct SonarMotionNoise {

@@ -47,7 +47,6 @@ using hull::ui::testing::Window;
 
 namespace {
 
-
 // Exports after a run (outside the test class: it may throw, the test catches).
 void ExportChecks() {
   Window win;
