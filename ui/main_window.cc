@@ -455,13 +455,15 @@ void MainWindow::dropEvent(QDropEvent* event) {
 
 void MainWindow::showEvent(QShowEvent* event) {
   QMainWindow::showEvent(event);
-  if (initial_docks_.size() != 3) return;
+  if (initial_docks_.size() != 4) return;
   // Dock sizes once the window has its size: most of the room for the scene.
   const std::vector<QDockWidget*> docks = std::move(initial_docks_);
   initial_docks_.clear();
   QTimer::singleShot(0, this, [this, docks] {
     resizeDocks({docks[0], docks[1]}, {300, 340}, Qt::Horizontal);
     resizeDocks({docks[1], docks[2]}, {500, 260}, Qt::Vertical);
+    resizeDocks({docks[3]}, {300}, Qt::Vertical);  // the result views under the scene
+    PrepareResultDocks();
   });
 }
 

@@ -155,10 +155,9 @@ class MainWindow : public QMainWindow {
   SonarPanel* sonar_ = nullptr;
   ResultExporter* exporter_ = nullptr;
   bool selecting_from_pick_ = false;  // a row selected by a pick in the scene: no flight
-  // The result docks under the scene: hidden until there is something to show.
-  std::vector<QDockWidget*> result_docks_;
+  QDockWidget* section_dock_ = nullptr;
   QDockWidget* sonar_dock_ = nullptr;
-  void RevealDocks(const std::vector<QDockWidget*>& docks, QDockWidget* front);
+  void PrepareResultDocks();  // once the window is shown
   JobStatusWidget* job_status_ = nullptr;
   QLabel* placement_label_ = nullptr;
   QLabel* results_label_ = nullptr;

@@ -9,6 +9,7 @@
 #include <QMenu>
 #include <QMenuBar>
 #include <QStatusBar>
+#include <QTimer>
 #include <algorithm>
 
 #include "ui/cross_section_view.h"
@@ -44,11 +45,9 @@ void MainWindow::CreateResultDocks() {
   tabifyDockWidget(objects, keyframe);
   tabifyDockWidget(keyframe, sonar);
   section->raise();
-  // Hidden until the first results (or sonar run) arrive: the scene gets the
-  // whole height meanwhile; the View menu shows them at any time.
-  result_docks_ = {section, plots, objects, keyframe};
+  section_dock_ = section;
   sonar_dock_ = sonar;
-  for (QDockWidget* dock : {section, plots, objects, keyframe, sonar}) dock->hide();
+  initial_docks_.push_back(section);
   exporter_ = new ResultExporter(session_, jobs_, this);
 }
 
@@ -60,7 +59,6 @@ void MainWindow::ConnectResults() {
   };
   connect(session_, &Session::adjustmentChanged, this, [this, update_runs] {
     const auto& run = session_->adjustment();
-    if (run) RevealDocks(result_docks_, result_docks_.front());
     if (run && !scene_->Stats(SceneLayer::kAdjustedLandmarks).present) {
       // The first results: show them rather than the survey's own
       // landmarks, DVL hits and true trajectory (still a click away).
@@ -139,7 +137,7 @@ void MainWindow::ConnectResults() {
   update_sigmas(parameters_->values());
 
   connect(sonar_, &SonarPanel::runChanged, this, [this] {
-    RevealDocks({sonar_dock_}, sonar_dock_);
+    sonar_dock_->show();
     sonar_dock_->raise();
   });
   connect(exporter_, &ResultExporter::failed, this, &MainWindow::ReportError);
@@ -149,16 +147,12 @@ void MainWindow::ConnectResults() {
   cross_section_->SetCompareEnabled(false);
 }
 
-void MainWindow::RevealDocks(const std::vector<QDockWidget*>& docks, QDockWidget* front) {
-  bool any_hidden = false;
-  for (QDockWidget* dock : docks) any_hidden = any_hidden || dock->isHidden();
-  if (!any_hidden) return;
-  const bool area_was_empty =
-      std::all_of(result_docks_.begin(), result_docks_.end(), [](QDockWidget* d) { return d->isHidden(); }) &&
-      sonar_dock_->isHidden();
-  for (QDockWidget* dock : docks) dock->show();
-  front->raise();
-  if (area_was_empty) resizeDocks({front}, {300}, Qt::Vertical);
+void MainWindow::PrepareResultDocks() {
+  // The sonar view's OpenGL starts the first time its tab is shown (tens of
+  // milliseconds with a software OpenGL): do it now, while the window
+  // appears, rather than when the first sonar run arrives.
+  sonar_dock_->raise();
+  QTimer::singleShot(0, this, [this] { section_dock_->raise(); });
 }
 
 void MainWindow::CreateInspectionMenu() {

@@ -31,7 +31,10 @@ SonarView::~SonarView() = default;
 void SonarView::ScheduleRender() {
   if (render_pending_) return;
   render_pending_ = true;
-  QTimer::singleShot(0, this, [this] {
+  // A 1 ms timer rather than a posted event: the event loop gets a turn
+  // (input, timers) between the change that asked for the frame and the
+  // frame itself.
+  QTimer::singleShot(1, this, [this] {
     render_pending_ = false;
     if (vtk_widget_->isVisible()) impl_->Render();
   });

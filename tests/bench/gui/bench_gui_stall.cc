@@ -16,6 +16,7 @@
 #include <QDoubleSpinBox>
 #include <QElapsedTimer>
 #include <QEventLoop>
+#include <QPointer>
 #include <QTableView>
 #include <QTimer>
 #include <QUndoStack>
@@ -50,15 +51,20 @@ class TimedApplication : public QApplication {
       --depth_;
       return r;
     }
+    // The receiver may be gone afterwards (a single-shot timer deletes
+    // itself): note what it is first.
+    const char* class_name = receiver->metaObject()->className();
+    const int type = static_cast<int>(event->type());
+    QPointer<QObject> alive(receiver);
     QElapsedTimer t;
     t.start();
     const bool r = QApplication::notify(receiver, event);
     --depth_;
     const double ms = t.nsecsElapsed() / 1e6;
     if (ms > 20.0) {
-      std::string what = receiver->metaObject()->className();
-      if (!receiver->objectName().isEmpty()) what += " '" + receiver->objectName().toStdString() + "'";
-      what += " event " + std::to_string(static_cast<int>(event->type()));
+      std::string what = class_name;
+      if (alive && !alive->objectName().isEmpty()) what += " '" + alive->objectName().toStdString() + "'";
+      what += " event " + std::to_string(type);
       slow.push_back({ms, what});
     }
     return r;
