@@ -37,19 +37,9 @@ SceneView::SceneView(QWidget* parent) : QWidget(parent), impl_(std::make_unique<
 
 SceneView::~SceneView() = default;
 
-void SceneView::ScheduleRender() {
-  // QVTKOpenGLNativeWidget's paintGL only shows VTK's last frame: a change
-  // of the scene needs a vtkRenderWindow::Render(). Coalesced per event loop turn.
-  if (render_pending_) return;
-  render_pending_ = true;
-  // A 1 ms timer rather than a posted event: the event loop gets a turn
-  // (input, timers) between the change that asked for the frame and the
-  // frame itself.
-  QTimer::singleShot(1, this, [this] {
-    render_pending_ = false;
-    if (vtk_widget_->isVisible()) impl_->Render();
-  });
-}
+void SceneView::ScheduleRender() { render_.Schedule(); }
+
+void SceneView::RenderNow() { impl_->Render(); }
 
 QSurfaceFormat SceneView::SurfaceFormat() { return QVTKOpenGLNativeWidget::defaultFormat(); }
 

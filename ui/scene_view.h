@@ -22,6 +22,7 @@
 #include "ui/cross_section.h"
 #include "ui/inspection_results.h"
 #include "ui/pick_details.h"
+#include "ui/render_coalescer.h"
 #include "ui/scene_options.h"
 #include "ui/survey_overlays.h"
 
@@ -96,10 +97,11 @@ class SceneView : public QWidget {
 
  private:
   void ScheduleRender();
+  void RenderNow();  // the coalesced frame
   void StepFlight();
 
   QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
-  bool render_pending_ = false;
+  RenderCoalescer render_{this, [this] { RenderNow(); }};
   std::unique_ptr<SceneViewImpl> impl_;
   QPoint press_position_;
   bool press_valid_ = false;

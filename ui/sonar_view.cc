@@ -28,17 +28,9 @@ SonarView::SonarView(QWidget* parent) : QWidget(parent), impl_(std::make_unique<
 
 SonarView::~SonarView() = default;
 
-void SonarView::ScheduleRender() {
-  if (render_pending_) return;
-  render_pending_ = true;
-  // A 1 ms timer rather than a posted event: the event loop gets a turn
-  // (input, timers) between the change that asked for the frame and the
-  // frame itself.
-  QTimer::singleShot(1, this, [this] {
-    render_pending_ = false;
-    if (vtk_widget_->isVisible()) impl_->Render();
-  });
-}
+void SonarView::ScheduleRender() { render_.Schedule(); }
+
+void SonarView::RenderNow() { impl_->Render(); }
 
 void SonarView::SetRun(std::shared_ptr<const SonarRun> run) {
   impl_->SetRun(std::move(run));

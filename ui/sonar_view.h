@@ -12,6 +12,7 @@
 #include <QWidget>
 #include <memory>
 
+#include "ui/render_coalescer.h"
 #include "ui/sonar_results.h"
 
 class QVTKOpenGLNativeWidget;
@@ -44,10 +45,11 @@ class SonarView : public QWidget {
 
  private:
   void ScheduleRender();
+  void RenderNow();  // the coalesced frame
 
   QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
   std::unique_ptr<SonarViewImpl> impl_;
-  bool render_pending_ = false;
+  RenderCoalescer render_{this, [this] { RenderNow(); }};
 };
 
 }  // namespace hull::ui

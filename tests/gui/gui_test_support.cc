@@ -1,8 +1,10 @@
 #include "gui_test_support.h"
 
+#include <QApplication>
 #include <QDir>
 #include <QFile>
 #include <QStandardPaths>
+#include <QTest>
 #include <cstdlib>
 
 #include "base/progress.h"
@@ -110,6 +112,13 @@ bool MatchesBaseline(const QImage& image, const QString& name, QString* message,
     return false;
   }
   return true;
+}
+
+void Settle(QWidget* w) {
+  QApplication::processEvents();
+  QTest::qWait(50);
+  w->repaint();
+  QApplication::processEvents();
 }
 
 }  // namespace hull::ui::testing

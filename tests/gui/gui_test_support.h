@@ -6,6 +6,7 @@
 #include <QApplication>
 #include <QImage>
 #include <QString>
+#include <QWidget>
 #include <QtTest>
 #include <memory>
 
@@ -41,6 +42,10 @@ const Demo& LoadDemo();
 // baseline it fails, saying how to accept the new image.
 bool MatchesBaseline(const QImage& image, const QString& name, QString* message, int channel_tolerance = 40,
                      double max_fraction = 0.01);
+
+// Renders pending paints (and the views' coalesced frames) so that a grab
+// shows the current state of `w`.
+void Settle(QWidget* w);
 
 }  // namespace hull::ui::testing
 

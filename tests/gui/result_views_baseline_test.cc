@@ -22,17 +22,6 @@
 using namespace hull::ui;
 using namespace hull::ui::testing;
 
-namespace {
-
-void Settle(QWidget* w) {
-  QApplication::processEvents();
-  QTest::qWait(50);
-  w->repaint();
-  QApplication::processEvents();
-}
-
-}  // namespace
-
 class ResultViewsBaselineTest : public QObject {
   Q_OBJECT
 

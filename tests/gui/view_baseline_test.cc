@@ -23,18 +23,7 @@
 using namespace hull::ui;
 using hull::ui::testing::MakeSyntheticSurvey;
 using hull::ui::testing::MatchesBaseline;
-
-namespace {
-
-// Renders pending paints so that a grab shows the current state.
-void Settle(QWidget* w) {
-  QApplication::processEvents();
-  QTest::qWait(50);
-  w->repaint();
-  QApplication::processEvents();
-}
-
-}  // namespace
+using hull::ui::testing::Settle;
 
 class ViewBaselineTest : public QObject {
   Q_OBJECT
