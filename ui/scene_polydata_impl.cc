@@ -167,20 +167,22 @@ vtkSmartPointer<vtkPolyData> AlphaShapesPolyData(const std::vector<KeyframeShape
   return poly;
 }
 
-vtkSmartPointer<vtkPolyData> SegmentsPolyData(const std::vector<std::vector<std::array<Eigen::Vector3d, 2>>>& groups) {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<int> owner;
-  vtkNew<vtkCellArray> lines;
-  for (std::size_t k = 0; k < groups.size(); ++k) {
-    for (const auto& segment : groups[k]) {
-      const vtkIdType ids[2] = {static_cast<vtkIdType>(points.size()), static_cast<vtkIdType>(points.size() + 1)};
-      lines->InsertNextCell(2, ids);
-      points.push_back(segment[0]);
-      points.push_back(segment[1]);
-      owner.push_back(static_cast<int>(k));
-      owner.push_back(static_cast<int>(k));
-    }
-  }
+namespace {
+
+// Line cells over `points`, each point tagged with the index of the object it
+// belongs to (the "object_index" array picking reads).
+void AddSegment(const std::array<Eigen::Vector3d, 2>& segment, int k, std::vector<Eigen::Vector3d>& points,
+                std::vector<int>& owner, vtkCellArray* lines) {
+  const vtkIdType ids[2] = {static_cast<vtkIdType>(points.size()), static_cast<vtkIdType>(points.size() + 1)};
+  lines->InsertNextCell(2, ids);
+  points.push_back(segment[0]);
+  points.push_back(segment[1]);
+  owner.push_back(k);
+  owner.push_back(k);
+}
+
+vtkSmartPointer<vtkPolyData> OwnedLinesPolyData(const std::vector<Eigen::Vector3d>& points,
+                                                const std::vector<int>& owner, vtkCellArray* lines) {
   auto poly = vtkSmartPointer<vtkPolyData>::New();
   poly->SetPoints(MakePoints(points));
   poly->SetLines(lines);
@@ -190,6 +192,20 @@ vtkSmartPointer<vtkPolyData> SegmentsPolyData(const std::vector<std::vector<std:
   for (std::size_t i = 0; i < owner.size(); ++i) index->SetValue(static_cast<vtkIdType>(i), owner[i]);
   poly->GetPointData()->AddArray(index);
   return poly;
+}
+
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> SegmentsPolyData(const std::vector<std::vector<std::array<Eigen::Vector3d, 2>>>& groups) {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> owner;
+  vtkNew<vtkCellArray> lines;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    for (const auto& segment : groups[k]) {
+      AddSegment(segment, static_cast<int>(k), points, owner, lines);
+    }
+  }
+  return OwnedLinesPolyData(points, owner, lines);
 }
 
 vtkSmartPointer<vtkPolyData> OutlinesPolyData(const std::vector<ObjectOutline>& outlines) {
@@ -209,23 +225,10 @@ vtkSmartPointer<vtkPolyData> OutlinesPolyData(const std::vector<ObjectOutline>& 
       lines->InsertCellPoint(first);
     }
     for (const auto& segment : o.segments) {
-      const vtkIdType ids[2] = {static_cast<vtkIdType>(points.size()), static_cast<vtkIdType>(points.size() + 1)};
-      lines->InsertNextCell(2, ids);
-      points.push_back(segment[0]);
-      points.push_back(segment[1]);
-      owner.push_back(static_cast<int>(k));
-      owner.push_back(static_cast<int>(k));
+      AddSegment(segment, static_cast<int>(k), points, owner, lines);
     }
   }
-  auto poly = vtkSmartPointer<vtkPolyData>::New();
-  poly->SetPoints(MakePoints(points));
-  poly->SetLines(lines);
-  vtkNew<vtkIntArray> index;
-  index->SetName("object_index");
-  index->SetNumberOfTuples(static_cast<vtkIdType>(owner.size()));
-  for (std::size_t i = 0; i < owner.size(); ++i) index->SetValue(static_cast<vtkIdType>(i), owner[i]);
-  poly->GetPointData()->AddArray(index);
-  return poly;
+  return OwnedLinesPolyData(points, owner, lines);
 }
 
 vtkSmartPointer<vtkPolyData> FrustaPolyData(const std::vector<Frustum>& frusta) {
