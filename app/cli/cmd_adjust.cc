@@ -26,7 +26,7 @@ options:
   --lookup NAME        closest-face (default) or nearest-vertex (the paper's)
   --max-iterations N   Levenberg-Marquardt iterations (default 100)
   --threads N          0: all cores (default)
-  --linear-solver S    auto (default), sparse-schur or iterative-schur
+  --linear-solver S    sparse-schur (default) or iterative-schur (less memory, slower)
   --no-servo           hold the servo angles at their measurements
   --no-extrinsic       hold the camera extrinsic at its nominal value
   --no-dvl             leave out the DVL raycast factors
@@ -71,8 +71,8 @@ int RunAdjust(const CommandArgs& argv) {
       o.linear_solver = AdjustmentOptions::LinearSolver::kSparseSchur;
     else if (ls == "iterative-schur")
       o.linear_solver = AdjustmentOptions::LinearSolver::kIterativeSchur;
-    else if (ls != "auto")
-      throw UsageError("--linear-solver expects auto, sparse-schur or iterative-schur");
+    else
+      throw UsageError("--linear-solver expects sparse-schur or iterative-schur");
   }
   o.num_threads = static_cast<int>(a.GetInt("threads", 0));
   o.estimate_servo = !a.Has("no-servo");

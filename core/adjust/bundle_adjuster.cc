@@ -405,8 +405,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   ceres::Solver::Options so;
   so.minimizer_type = ceres::TRUST_REGION;
   so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  const bool iterative = o.linear_solver == AdjustmentOptions::LinearSolver::kIterativeSchur ||
-                         (o.linear_solver == AdjustmentOptions::LinearSolver::kAuto && K > 3000);
+  const bool iterative = o.linear_solver == AdjustmentOptions::LinearSolver::kIterativeSchur;
   so.linear_solver_type = iterative ? ceres::ITERATIVE_SCHUR : ceres::SPARSE_SCHUR;
   so.preconditioner_type = ceres::SCHUR_JACOBI;
   so.use_explicit_schur_complement = false;

@@ -3,7 +3,8 @@
 // and optionally the curtiss-size survey (>= 10,000 keyframes; wall time and
 // peak memory of alignment + max-mixture adjustment).
 //
-//   build/bin/bench_adjust [--repeat N] [--curtiss] [--threads N]
+//   build/bin/bench_adjust [--repeat N] [--curtiss | --curtiss-only] [--threads N]
+//                          [--linear-solver sparse|iterative] [--verbose]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -30,7 +31,8 @@ double PeakRssGiB() {
 
 int main(int argc, char** argv) {
   int repeat = 3, threads = 0;
-  bool curtiss = false;
+  bool curtiss = false, presets = true, verbose = false;
+  auto solver = hull::AdjustmentOptions::LinearSolver::kSparseSchur;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--repeat") && i + 1 < argc)
       repeat = std::atoi(argv[++i]);
@@ -38,8 +40,19 @@ int main(int argc, char** argv) {
       threads = std::atoi(argv[++i]);
     else if (!std::strcmp(argv[i], "--curtiss"))
       curtiss = true;
+    else if (!std::strcmp(argv[i], "--curtiss-only"))
+      curtiss = true, presets = false;
+    else if (!std::strcmp(argv[i], "--verbose"))
+      verbose = true;
+    else if (!std::strcmp(argv[i], "--linear-solver") && i + 1 < argc && !std::strcmp(argv[i + 1], "sparse"))
+      solver = hull::AdjustmentOptions::LinearSolver::kSparseSchur, ++i;
+    else if (!std::strcmp(argv[i], "--linear-solver") && i + 1 < argc && !std::strcmp(argv[i + 1], "iterative"))
+      solver = hull::AdjustmentOptions::LinearSolver::kIterativeSchur, ++i;
     else {
-      std::fprintf(stderr, "usage: %s [--repeat N] [--threads N] [--curtiss]\n", argv[0]);
+      std::fprintf(stderr,
+                   "usage: %s [--repeat N] [--threads N] [--curtiss | --curtiss-only] "
+                   "[--linear-solver sparse|iterative] [--verbose]\n",
+                   argv[0]);
       return 2;
     }
   }
@@ -47,6 +60,7 @@ int main(int argc, char** argv) {
   std::printf("%-7s %-15s %10s %11s %12s %9s %12s\n", "survey", "model", "iterations", "median s", "vs naive",
               "lambda=1", "RMSE (mm)");
   for (const char* preset : {"demo", "mono"}) {
+    if (!presets) break;
     const hull::SimulatedSurvey s = hull::SimulateSurvey(hull::SurveyPreset(preset), quiet);
     hull::PipelineInputs in;
     in.bundle = s.bundle;
@@ -82,10 +96,19 @@ int main(int argc, char** argv) {
     in.mesh = s.cad;
     const double sim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto t1 = std::chrono::steady_clock::now();
-    const hull::ModelAlignment al = hull::RunAlignment(in, hull::PipelineOptions(), quiet);
+    // --verbose: the alignment's stages with their start times.
+    hull::CallbackProgress stages([&](double, const std::string& message) {
+      if (verbose) {
+        std::printf("  %7.2f s  %s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(),
+                    message.c_str());
+      }
+    });
+    const hull::ModelAlignment al = hull::RunAlignment(in, hull::PipelineOptions(), stages);
     const double align_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
     hull::AdjustmentOptions o;
     o.num_threads = threads;
+    o.linear_solver = solver;
+    o.verbose = verbose;
     const hull::AdjustmentResult r = hull::RunAdjustment(in.bundle, in.mesh, al.x_gM, o, quiet);
     const hull::AdjustmentEvaluation e = hull::EvaluateAdjustment(in.bundle, in.mesh, r);
     std::printf(
