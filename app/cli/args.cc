@@ -8,6 +8,7 @@
 namespace hull::cli {
 
 Args::Args(const std::vector<std::string>& argv, std::set<std::string> flags) {
+  flags.insert("help");  // every command has --help (and -h)
   for (std::size_t i = 0; i < argv.size(); ++i) {
     const std::string& a = argv[i];
     if (a.size() > 2 && a[0] == '-' && a[1] == '-') {

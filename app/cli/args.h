@@ -22,7 +22,8 @@ enum ExitCode : int {
 
 class Args {
  public:
-  // flags: names of options that take no value (without "--").
+  // flags: names of options that take no value (without "--"); "help" (and
+  // "-h") always is one.
   Args(const std::vector<std::string>& argv, std::set<std::string> flags);
 
   bool Has(const std::string& name) const { return values_.count(name) > 0; }
