@@ -296,7 +296,22 @@ Vector6d ReadPose6(const CsvReader& r, const int* cols) {
   return x;
 }
 
-void ReadNav(const std::string& dir, SurveyBundle& b, Diagnostics& diag) {
+// The keyframes other files may refer to: those nav.csv gave, and those whose
+// nav.csv row was reported unreadable (a reference to one of these is not a
+// second error: the row is skipped quietly, the first report says why).
+struct Keyframes {
+  std::unordered_map<std::int64_t, int> index;
+  std::unordered_set<std::int64_t> unreadable;
+  // False: skip the row. Fails the row when nav.csv has no such keyframe.
+  bool Check(const CsvReader& r, int col, std::int64_t id) const {
+    if (index.count(id)) return true;
+    if (unreadable.count(id)) return false;
+    r.Fail(col, "keyframe " + std::to_string(id) + " is not in nav.csv");
+    return false;
+  }
+};
+
+void ReadNav(const std::string& dir, SurveyBundle& b, Diagnostics& diag, Keyframes& kf) {
   const std::string name = Rel(dir, "nav.csv");
   std::string text;
   if (!OpenCsv(name, name, true, diag, text)) return;
@@ -318,12 +333,17 @@ void ReadNav(const std::string& dir, SurveyBundle& b, Diagnostics& diag) {
       [&](const CsvReader& r) {
         NavRecord n;
         n.keyframe = r.Int(c_kf);
-        n.t = r.Double(c_t);
-        n.x_gv = ReadPose6(r, c_x);
-        n.depth = r.Double(c_depth);
-        n.roll_meas = r.Double(c_rm);
-        n.pitch_meas = r.Double(c_pm);
-        n.servo = r.Double(c_servo);
+        try {
+          n.t = r.Double(c_t);
+          n.x_gv = ReadPose6(r, c_x);
+          n.depth = r.Double(c_depth);
+          n.roll_meas = r.Double(c_rm);
+          n.pitch_meas = r.Double(c_pm);
+          n.servo = r.Double(c_servo);
+        } catch (const InputError&) {
+          if (!seen.count(n.keyframe)) kf.unreadable.insert(n.keyframe);
+          throw;
+        }
         if (!seen.insert(n.keyframe).second) {
           r.Fail(c_kf, "keyframe " + std::to_string(n.keyframe) + " appears twice; ids must be unique");
         }
@@ -335,10 +355,10 @@ void ReadNav(const std::string& dir, SurveyBundle& b, Diagnostics& diag) {
         b.nav.push_back(n);
       });
   if (b.nav.empty()) diag.Error({name, 0, 0, ""}, "no keyframes: expected at least one row");
+  kf.index = b.KeyframeIndex();
 }
 
-void ReadOdometry(const std::string& dir, SurveyBundle& b, const std::unordered_map<std::int64_t, int>& kf,
-                  Diagnostics& diag) {
+void ReadOdometry(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
   const std::string name = Rel(dir, "odometry.csv");
   std::string text;
   if (!OpenCsv(name, name, true, diag, text)) return;
@@ -356,15 +376,13 @@ void ReadOdometry(const std::string& dir, SurveyBundle& b, const std::unordered_
         o.from = r.Int(c_from);
         o.to = r.Int(c_to);
         o.z = ReadPose6(r, c_z);
-        if (!kf.count(o.from)) r.Fail(c_from, "keyframe " + std::to_string(o.from) + " is not in nav.csv");
-        if (!kf.count(o.to)) r.Fail(c_to, "keyframe " + std::to_string(o.to) + " is not in nav.csv");
+        if (!kf.Check(r, c_from, o.from) || !kf.Check(r, c_to, o.to)) return;
         if (o.from == o.to) r.Fail(c_to, "odometry from a keyframe to itself");
         b.odometry.push_back(o);
       });
 }
 
-void ReadDvl(const std::string& dir, SurveyBundle& b, const std::unordered_map<std::int64_t, int>& kf,
-             Diagnostics& diag) {
+void ReadDvl(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
   const std::string name = Rel(dir, "dvl.csv");
   std::string text;
   if (!OpenCsv(name, name, true, diag, text)) return;
@@ -379,7 +397,6 @@ void ReadDvl(const std::string& dir, SurveyBundle& b, const std::unordered_map<s
       [&](const CsvReader& r) {
         DvlRecord d;
         d.keyframe = r.Int(c_kf);
-        if (!kf.count(d.keyframe)) r.Fail(c_kf, "keyframe " + std::to_string(d.keyframe) + " is not in nav.csv");
         if (!seen.insert(d.keyframe).second) {
           r.Fail(c_kf, "keyframe " + std::to_string(d.keyframe) + " has a second row; expected one per keyframe");
         }
@@ -389,12 +406,11 @@ void ReadDvl(const std::string& dir, SurveyBundle& b, const std::unordered_map<s
             d.range[static_cast<std::size_t>(i)] = *v;
           }
         }
-        b.dvl.push_back(d);
+        if (kf.Check(r, c_kf, d.keyframe)) b.dvl.push_back(d);
       });
 }
 
-void ReadFeatures(const std::string& dir, SurveyBundle& b, const std::unordered_map<std::int64_t, int>& kf,
-                  Diagnostics& diag) {
+void ReadFeatures(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
   const std::string name = Rel(dir, "features.csv");
   std::string text;
   if (!OpenCsv(name, name, true, diag, text)) return;
@@ -429,7 +445,6 @@ void ReadFeatures(const std::string& dir, SurveyBundle& b, const std::unordered_
           f.bottom = {r.Double(c_ub), r.Double(c_vb)};
           f.has_bottom = true;
         }
-        if (!kf.count(f.keyframe)) r.Fail(c_kf, "keyframe " + std::to_string(f.keyframe) + " is not in nav.csv");
         const std::uint64_t key =
             (static_cast<std::uint64_t>(f.keyframe) << 32) ^ static_cast<std::uint64_t>(f.landmark);
         if (!seen.insert(key).second) {
@@ -440,7 +455,7 @@ void ReadFeatures(const std::string& dir, SurveyBundle& b, const std::unordered_
           diag.Warning(r.Where(c_ut), "pixel lies outside the " + std::to_string(cam.width) + "x" +
                                           std::to_string(cam.height) + " image");
         }
-        b.features.push_back(f);
+        if (kf.Check(r, c_kf, f.keyframe)) b.features.push_back(f);
       });
 }
 
@@ -486,8 +501,7 @@ Json ReadJsonFile(const std::string& path, Diagnostics& diag, bool& ok) {
   return Json();
 }
 
-void ReadTruth(const std::string& dir, SurveyBundle& b, const std::unordered_map<std::int64_t, int>& kf,
-               Diagnostics& diag) {
+void ReadTruth(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
   const std::string tdir = Rel(dir, "truth");
   std::error_code ec;
   if (!fs::is_directory(tdir, ec)) return;
@@ -511,7 +525,7 @@ void ReadTruth(const std::string& dir, SurveyBundle& b, const std::unordered_map
             p.keyframe = r.Int(c_kf);
             p.x_gv = ReadPose6(r, c_x);
             p.servo = r.Double(c_s);
-            if (!kf.count(p.keyframe)) r.Fail(c_kf, "keyframe " + std::to_string(p.keyframe) + " is not in nav.csv");
+            if (!kf.Check(r, c_kf, p.keyframe)) return;
             t.poses.push_back(p);
           });
     }
@@ -642,8 +656,8 @@ SurveyBundle ReadImpl(const std::string& dir, std::vector<Problem>* problems) {
       }
     }
   }
-  ReadNav(dir, b, diag);
-  const auto kf = b.KeyframeIndex();
+  Keyframes kf;
+  ReadNav(dir, b, diag, kf);
   ReadOdometry(dir, b, kf, diag);
   ReadDvl(dir, b, kf, diag);
   if (manifest_ok) {
