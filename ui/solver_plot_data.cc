@@ -20,6 +20,16 @@ double Median(std::vector<double> v) {
   return *mid;
 }
 
+// One value of the iteration log against the iteration index, in the model's colour.
+PlotSeries IterationSeries(SurfaceModel model, const AdjustmentResult& result, double IterationRecord::*value) {
+  PlotSeries s;
+  s.name = ModelShortName(model);
+  s.colour = ModelColour(model);
+  int i = 0;
+  for (const IterationRecord& r : result.iterations) s.points.emplace_back(i++, r.*value);
+  return s;
+}
+
 }  // namespace
 
 QColor ModelColour(SurfaceModel model) {
@@ -64,12 +74,7 @@ PlotData CostPlot(const RunsByModel& runs) {
   for (SurfaceModel m : kOrder) {
     auto it = runs.find(m);
     if (it == runs.end()) continue;
-    PlotSeries s;
-    s.name = ModelShortName(m);
-    s.colour = ModelColour(m);
-    int i = 0;
-    for (const IterationRecord& r : it->second->result->iterations) s.points.emplace_back(i++, r.cost);
-    d.series.push_back(s);
+    d.series.push_back(IterationSeries(m, *it->second->result, &IterationRecord::cost));
   }
   return d;
 }
@@ -81,11 +86,7 @@ PlotData FractionPlot(const std::shared_ptr<const AdjustmentRun>& run) {
   d.y_label = QStringLiteral("fraction");
   d.empty_text = QStringLiteral("Run the inspection (F5)");
   if (!run) return d;
-  PlotSeries s;
-  s.name = ModelShortName(run->model());
-  s.colour = ModelColour(run->model());
-  int i = 0;
-  for (const IterationRecord& r : run->result->iterations) s.points.emplace_back(i++, r.fraction_on_surface);
+  const PlotSeries s = IterationSeries(run->model(), *run->result, &IterationRecord::fraction_on_surface);
   PlotSeries dots = s;
   dots.name.clear();
   dots.style = PlotSeries::Style::kPoints;
