@@ -44,10 +44,10 @@ int main(int argc, char** argv) {
       curtiss = true, presets = false;
     else if (!std::strcmp(argv[i], "--verbose"))
       verbose = true;
-    else if (!std::strcmp(argv[i], "--linear-solver") && i + 1 < argc && !std::strcmp(argv[i + 1], "sparse"))
-      solver = hull::AdjustmentOptions::LinearSolver::kSparseSchur, ++i;
-    else if (!std::strcmp(argv[i], "--linear-solver") && i + 1 < argc && !std::strcmp(argv[i + 1], "iterative"))
-      solver = hull::AdjustmentOptions::LinearSolver::kIterativeSchur, ++i;
+    else if (!std::strcmp(argv[i], "--linear-solver") && i + 1 < argc &&
+             (!std::strcmp(argv[i + 1], "sparse") || !std::strcmp(argv[i + 1], "iterative")))
+      solver = !std::strcmp(argv[++i], "sparse") ? hull::AdjustmentOptions::LinearSolver::kSparseSchur
+                                                 : hull::AdjustmentOptions::LinearSolver::kIterativeSchur;
     else {
       std::fprintf(stderr,
                    "usage: %s [--repeat N] [--threads N] [--curtiss | --curtiss-only] "

@@ -3,19 +3,15 @@
 // a simulate -> validate round trip.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <array>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
-namespace {
+#include "support/test_files.h"
 
-namespace fs = std::filesystem;
+namespace {
 
 struct CliRun {
   int exit_code = -1;
@@ -42,24 +38,6 @@ CliRun Cli(const std::vector<std::string>& args) {
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
-
-class TempDir {
- public:
-  TempDir() {
-    path_ = fs::temp_directory_path() / ("hi-cli-test-" + std::to_string(::getpid()) + "-" +
-                                         ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 const std::vector<std::string> kCommands = {"simulate", "validate", "info", "align", "run", "adjust", "map", "sonar"};
 
@@ -98,46 +76,23 @@ TEST(Cli, BadCommandLinesExitTwoNamingTheProblem) {
 }
 
 TEST(Cli, MissingBundleIsNamed) {
-  TempDir tmp;
-  const std::string missing = (tmp.path() / "no-such-bundle").string();
+  const hull::testing::ScratchDir tmp("cli_missing");
+  const std::string missing = tmp / "no-such-bundle";
   const CliRun r = Cli({"validate", missing});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find(missing), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("INVALID"), std::string::npos) << r.output;
 }
 
-// Replaces field `column` (0-based) of line `line` (1-based) of a CSV file.
-void CorruptCsv(const fs::path& file, int line, int column, const std::string& value) {
-  std::ifstream in(file);
-  std::vector<std::string> lines;
-  for (std::string l; std::getline(in, l);) lines.push_back(l);
-  ASSERT_GT(static_cast<int>(lines.size()), line);
-  std::string& l = lines[static_cast<std::size_t>(line - 1)];
-  std::vector<std::string> fields;
-  std::stringstream ss(l);
-  for (std::string f; std::getline(ss, f, ',');) fields.push_back(f);
-  ASSERT_GT(static_cast<int>(fields.size()), column);
-  fields[static_cast<std::size_t>(column)] = value;
-  l.clear();
-  for (std::size_t i = 0; i < fields.size(); ++i) l += (i ? "," : "") + fields[i];
-  std::ofstream out(file, std::ios::trunc);
-  for (const std::string& x : lines) out << x << "\n";
-}
-
-std::string HeaderField(const fs::path& file, int column) {
-  std::ifstream in(file);
-  std::string header;
-  std::getline(in, header);
-  std::stringstream ss(header);
-  std::string f;
-  for (int i = 0; i <= column && std::getline(ss, f, ','); ++i) {
-  }
-  return f;
+// Field `field` (0-based) of a CSV line (no quoting in survey files).
+std::string CsvField(const std::string& line, int field) {
+  const auto start = static_cast<std::size_t>(hull::testing::CsvColumn(line, field) - 1);
+  return line.substr(start, line.find(',', start) - start);
 }
 
 TEST(Cli, SimulateThenValidateAndNameACorruptField) {
-  TempDir tmp;
-  const std::string bundle = (tmp.path() / "demo").string();
+  const hull::testing::ScratchDir tmp("cli_round_trip");
+  const std::string bundle = tmp / "demo";
   CliRun r = Cli({"simulate", "--preset", "demo", "--out", bundle, "--quiet"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   r = Cli({"validate", bundle});
@@ -148,13 +103,19 @@ TEST(Cli, SimulateThenValidateAndNameACorruptField) {
 
   // A number that is not one, on line 7 of nav.csv: the file, the line and
   // the field are named, and nothing else is reported broken.
-  const fs::path nav = fs::path(bundle) / "nav.csv";
-  const std::string field = HeaderField(nav, 1);
+  const std::string nav = bundle + "/nav.csv";
+  const std::string text = hull::testing::ReadText(nav);
+  const std::string field = CsvField(hull::testing::LineOf(text, 1), 1);
   ASSERT_FALSE(field.empty());
-  CorruptCsv(nav, 7, 1, "12.5x");
+  const std::string line = hull::testing::LineOf(text, 7);
+  const int column = hull::testing::CsvColumn(line, 1);
+  const std::string value = CsvField(line, 1);
+  hull::testing::ReplaceLine(nav, 7,
+                             line.substr(0, static_cast<std::size_t>(column - 1)) + "12.5x" +
+                                 line.substr(static_cast<std::size_t>(column - 1) + value.size()));
   r = Cli({"validate", bundle});
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("nav.csv:7"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("nav.csv:7:" + std::to_string(column)), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(" + field + ")"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("INVALID (1 errors"), std::string::npos) << r.output;
   // The other commands refuse the bundle with the same location (exit 3).

@@ -9,8 +9,8 @@
 #include "base/error.h"
 #include "base/file_io.h"
 #include "simulate/sonar_simulator.h"
+#include "support/test_files.h"
 #include "survey/acoustic_sequence.h"
-#include "test_util.h"
 
 namespace hull {
 namespace {

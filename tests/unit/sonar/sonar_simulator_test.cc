@@ -13,7 +13,7 @@
 #include "base/error.h"
 #include "simulate/sonar_simulator.h"
 #include "sonar/acoustic_camera.h"
-#include "test_util.h"
+#include "support/test_files.h"
 
 namespace hull {
 namespace {

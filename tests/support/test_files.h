@@ -1,4 +1,4 @@
-// Helpers shared by the sonar tests: scratch folders and text edits.
+// Scratch folders and text edits for tests that write files and break them.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-#include "test_util.h"
+#include "support/test_files.h"
 
 #include <unistd.h>
 
@@ -14,9 +14,9 @@ namespace fs = std::filesystem;
 
 ScratchDir::ScratchDir(const std::string& tag) {
   static std::atomic<int> counter{0};
-  path_ = (fs::temp_directory_path() /
-           ("hi_sonar_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++)))
-              .string();
+  path_ =
+      (fs::temp_directory_path() / ("hi_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++)))
+          .string();
   fs::remove_all(path_);
   fs::create_directories(path_);
 }
