@@ -56,6 +56,14 @@ int SonarEkf::FeatureOffset(std::int64_t id) const {
 }
 
 SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<SonarMeasurement>& measurements) {
+  if (!predicted_) CheckMeasurements(measurements, step_ + 1);  // refuse before changing anything
+  Predict(control);
+  return Correct(measurements);
+}
+
+void SonarEkf::Predict(const SonarControl* control) {
+  if (predicted_)
+    throw std::invalid_argument("SonarEkf::Predict: step " + std::to_string(step_) + " was not corrected");
   if (step_ < 0 && control) throw std::invalid_argument("SonarEkf::Step: the first step has no control");
   if (step_ >= 0 && !control) {
     throw std::invalid_argument("SonarEkf::Step: step " + std::to_string(step_ + 1) + " needs its control");
@@ -65,7 +73,17 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
                                 " given at step " + std::to_string(step_ + 1));
   }
   if (control && !control->u.allFinite()) throw std::invalid_argument("SonarEkf::Step: control is not finite");
-  const std::int64_t step = step_ + 1;
+  ++step_;
+  predicted_ = true;
+  if (control) PredictPose(*control);
+}
+
+Eigen::Vector2d SonarEkf::NoiseOf(const SonarMeasurement& m) const {
+  return {m.range_sigma > 0 ? m.range_sigma : sensor_.range_sigma,
+          m.azimuth_sigma > 0 ? m.azimuth_sigma : sensor_.azimuth_sigma};
+}
+
+void SonarEkf::CheckMeasurements(const std::vector<SonarMeasurement>& measurements, std::int64_t step) const {
   std::unordered_set<std::int64_t> ids;
   for (const SonarMeasurement& m : measurements) {
     if (m.step != step) {
@@ -75,13 +93,18 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
     if (!ids.insert(m.feature).second) {
       throw std::invalid_argument("SonarEkf::Step: feature " + std::to_string(m.feature) + " measured twice");
     }
-    if (!std::isfinite(m.range) || !std::isfinite(m.azimuth) || m.range <= 0) {
+    if (!std::isfinite(m.range) || !std::isfinite(m.azimuth) || m.range <= 0 || !(m.range_sigma >= 0) ||
+        !(m.azimuth_sigma >= 0) || !std::isfinite(m.range_sigma) || !std::isfinite(m.azimuth_sigma)) {
       throw std::invalid_argument("SonarEkf::Step: measurement of feature " + std::to_string(m.feature) +
-                                  " is not a finite positive range and finite azimuth");
+                                  " is not a finite positive range and finite azimuth with finite sigmas");
     }
   }
-  step_ = step;
-  if (control) Predict(*control);
+}
+
+SonarStepEstimate SonarEkf::Correct(const std::vector<SonarMeasurement>& measurements) {
+  if (!predicted_) throw std::invalid_argument("SonarEkf::Correct: call Predict first");
+  CheckMeasurements(measurements, step_);
+  predicted_ = false;
 
   std::vector<Obs> in_state;
   std::vector<const SonarMeasurement*> fresh;
@@ -89,7 +112,7 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
   for (const SonarMeasurement& m : measurements) {
     auto f = features_.find(m.feature);
     if (f != features_.end()) {
-      in_state.push_back(Obs{0, f->second.offset, m.range, m.azimuth});
+      in_state.push_back(Obs{0, f->second.offset, m.range, m.azimuth, NoiseOf(m)});
       ++f->second.observations;
       continue;
     }
@@ -110,18 +133,24 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
     out.updated = static_cast<int>(in_state.size());
   }
   const int before = num_features_in_state();
-  if (options_.init == SonarInit::kPaper) {
+  if (options_.init == SonarInit::kPaper && options_.confirm_views <= 1) {
     InitialisePaper(fresh);
   } else {
     // Weigh the waiting features' hypotheses with this view and remember it.
     for (auto& [index, m] : waiting) {
       WeighPending(pending_[index], *m);
-      pending_[index].views.push_back(View{step_, m->range, m->azimuth});
+      pending_[index].views.push_back(View{step_, m->range, m->azimuth, NoiseOf(*m)});
     }
     std::vector<std::size_t> ready;
     std::vector<std::pair<double, double>> priors;
     for (std::size_t i = 0; i < pending_.size(); ++i) {
       const Pending& pd = pending_[i];
+      if (static_cast<int>(pd.views.size()) < options_.confirm_views) continue;
+      if (options_.init == SonarInit::kPaper) {
+        ready.push_back(i);
+        priors.emplace_back(0.0, options_.paper_elevation_sigma_fraction * sensor_.elevation_fov);
+        continue;
+      }
       const Collapse c = CollapseOf(pd);
       const int extra_views = static_cast<int>(pd.views.size()) - 1;
       if (extra_views >= options_.min_extra_views && c.mass >= options_.collapse_probability) {
@@ -146,7 +175,7 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
     for (const SonarMeasurement* m : fresh) {
       Pending pd;
       pd.id = m->feature;
-      pd.views.push_back(View{step_, m->range, m->azimuth});
+      pd.views.push_back(View{step_, m->range, m->azimuth, NoiseOf(*m)});
       for (int c = 0; c < options_.hypotheses; ++c) {
         pd.cell.push_back(c);
         pd.log_weight.push_back(0.0);
@@ -163,7 +192,7 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
   return out;
 }
 
-void SonarEkf::Predict(const SonarControl& control) {
+void SonarEkf::PredictPose(const SonarControl& control) {
   Matrix6d G, Gu;
   const Vector6d pose = SonarMotion(x_.head<6>(), control.u, &G, &Gu);
   const Vector6d sigma = ControlSigma(motion_noise_, control.u);
@@ -241,8 +270,9 @@ double SonarEkf::Update(const std::vector<Obs>& obs) {
     }
     S = (0.5 * (S + S.transpose())).eval();
     for (int i = 0; i < kb; ++i) {
-      S(2 * i, 2 * i) += sensor_.range_sigma * sensor_.range_sigma;
-      S(2 * i + 1, 2 * i + 1) += sensor_.azimuth_sigma * sensor_.azimuth_sigma;
+      const Eigen::Vector2d& sigma = obs[static_cast<std::size_t>(b0 + i)].sigma;
+      S(2 * i, 2 * i) += sigma[0] * sigma[0];
+      S(2 * i + 1, 2 * i + 1) += sigma[1] * sigma[1];
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(S);
     if (llt.info() != Eigen::Success) {

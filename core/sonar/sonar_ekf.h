@@ -63,6 +63,33 @@ class SonarEkf {
   // std::invalid_argument on misuse. Returns the pose estimate after the step.
   SonarStepEstimate Step(const SonarControl* control, const std::vector<SonarMeasurement>& measurements);
 
+  // The two halves of Step(), for data association in between: Predict moves
+  // to the next step with its control (as Step), Correct then takes that
+  // step's measurements. Throws std::invalid_argument when they do not alternate.
+  void Predict(const SonarControl* control);
+  SonarStepEstimate Correct(const std::vector<SonarMeasurement>& measurements);
+
+  // Predicted measurements of in-state features at the current pose, for
+  // gating: z = h(X) (range, azimuth per feature, in the order of ids) and
+  // the joint covariance H P H^T (2n x 2n, without measurement noise).
+  // Throws std::invalid_argument for an id not in the state.
+  void PredictMeasurements(const std::vector<std::int64_t>& ids, Eigen::VectorXd* z, Eigen::MatrixXd* HPHt) const;
+  // A waiting feature's predicted measurement, one Gaussian per surviving
+  // elevation hypothesis: mean, covariance without the new measurement's
+  // noise and normalised weight. Throws std::invalid_argument for an id not waiting.
+  struct HypothesisPrediction {
+    Eigen::Vector2d z = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d S = Eigen::Matrix2d::Identity();
+    double weight = 0;
+  };
+  std::vector<HypothesisPrediction> PredictPending(std::int64_t id) const;
+  // Ids in the state and waiting, ascending.
+  std::vector<std::int64_t> FeatureIds() const;
+  std::vector<std::int64_t> PendingIds() const;
+  // Removes a feature from the state (marginalised out: the rest of the
+  // estimate is unchanged) or from the waiting list. Returns false when unknown.
+  bool DropFeature(std::int64_t id);
+
   // The step of the last Step() call (-1 before the first).
   std::int64_t step() const { return step_; }
   Vector6d pose() const { return x_.head<6>(); }
@@ -99,6 +126,7 @@ class SonarEkf {
   struct View {
     std::int64_t step = 0;
     double range = 0, azimuth = 0;
+    Eigen::Vector2d sigma = Eigen::Vector2d::Zero();  // of range and azimuth
   };
   // A feature waiting for its elevation (kHypotheses).
   struct Pending {
@@ -113,9 +141,14 @@ class SonarEkf {
     int pose_offset = 0;
     int feature_offset = 0;
     double range = 0, azimuth = 0;
+    Eigen::Vector2d sigma = Eigen::Vector2d::Zero();  // of range and azimuth
   };
 
-  void Predict(const SonarControl& control);
+  void PredictPose(const SonarControl& control);
+  // Throws std::invalid_argument unless every measurement is of `step`, finite and of a distinct feature.
+  void CheckMeasurements(const std::vector<SonarMeasurement>& measurements, std::int64_t step) const;
+  // Standard deviations of a measurement's range and azimuth (the sensor's unless it gives its own).
+  Eigen::Vector2d NoiseOf(const SonarMeasurement& m) const;
   // Batch EKF update; returns the normalised innovation squared.
   double Update(const std::vector<Obs>& obs);
   // Appends blocks to the state: mean b, covariance of the new block B_bb and
@@ -130,6 +163,8 @@ class SonarEkf {
   int CloneOffset(std::int64_t step) const;
   void EnsureClone();  // a clone of the current pose for this step
   void WeighPending(Pending& pd, const SonarMeasurement& m) const;
+  // Per hypothesis: predicted measurement and its covariance without the new measurement's noise.
+  std::vector<HypothesisPrediction> HypothesisPredictions(const Pending& pd) const;
   // The merged Gaussian (mean, sigma) of the hypotheses within one cell of the
   // best, and the share of the weight they hold.
   struct Collapse {
@@ -150,6 +185,7 @@ class SonarEkf {
   SonarMotionNoise motion_noise_;
   SonarEkfOptions options_;
   std::int64_t step_ = -1;
+  bool predicted_ = false;  // Predict() done, Correct() not yet
   Eigen::VectorXd x_;
   Eigen::MatrixXd P_;
   std::unordered_map<std::int64_t, FeatureSlot> features_;

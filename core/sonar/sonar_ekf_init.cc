@@ -53,10 +53,10 @@ void AddFeatureBlocks(const std::vector<NewFeature>& nf, const Eigen::MatrixXd& 
 void SonarEkf::InitialisePaper(const std::vector<const SonarMeasurement*>& fresh) {
   if (fresh.empty()) return;
   const double sigma_phi = options_.paper_elevation_sigma_fraction * sensor_.elevation_fov;
-  const Eigen::Vector3d var(sensor_.range_sigma * sensor_.range_sigma, sensor_.azimuth_sigma * sensor_.azimuth_sigma,
-                            sigma_phi * sigma_phi);
   std::vector<NewFeature> nf;
   for (const SonarMeasurement* m : fresh) {
+    const Eigen::Vector2d noise = NoiseOf(*m);
+    const Eigen::Vector3d var(noise[0] * noise[0], noise[1] * noise[1], sigma_phi * sigma_phi);
     NewFeature f;
     f.id = m->feature;
     f.first_step = step_;
@@ -94,7 +94,7 @@ void SonarEkf::EnsureClone() {
   clones_.push_back(Clone{step_, offset, 0});
 }
 
-void SonarEkf::WeighPending(Pending& pd, const SonarMeasurement& m) const {
+std::vector<SonarEkf::HypothesisPrediction> SonarEkf::HypothesisPredictions(const Pending& pd) const {
   using Jet = ceres::Jet<double, 15>;
   const View& anchor = pd.views.front();
   const int a = CloneOffset(anchor.step);
@@ -105,14 +105,17 @@ void SonarEkf::WeighPending(Pending& pd, const SonarMeasurement& m) const {
   Sigma.bottomLeftCorner<6, 6>() = P_.block<6, 6>(a, 0);
   Sigma.bottomRightCorner<6, 6>() = P_.block<6, 6>(a, a);
   const double sigma_h = Spacing() / 2;
-  const Eigen::Vector3d polar_var(sensor_.range_sigma * sensor_.range_sigma,
-                                  sensor_.azimuth_sigma * sensor_.azimuth_sigma, sigma_h * sigma_h);
+  const Eigen::Vector3d polar_var(anchor.sigma[0] * anchor.sigma[0], anchor.sigma[1] * anchor.sigma[1],
+                                  sigma_h * sigma_h);
   Eigen::Matrix<Jet, 6, 1> xt, xa;
   for (int i = 0; i < 6; ++i) {
     xt[i] = Jet(x_[i], i);
     xa[i] = Jet(x_[a + i], 6 + i);
   }
   const Jet r0(anchor.range, 12), t0(anchor.azimuth, 13);
+  double total = 0;
+  for (double l : pd.log_weight) total += std::exp(l);
+  std::vector<HypothesisPrediction> out;
   for (std::size_t h = 0; h < pd.cell.size(); ++h) {
     // Predicted view of hypothesis h: h(x_t, g^-1(x_a, r0, theta0, phi_h)),
     // linearised in both poses, the first view's noise and the hypothesis' width.
@@ -124,10 +127,23 @@ void SonarEkf::WeighPending(Pending& pd, const SonarMeasurement& m) const {
       Jx.row(r) = z[r].v.head<12>().transpose();
       Jp.row(r) = z[r].v.tail<3>().transpose();
     }
-    Eigen::Matrix2d S = Jx * Sigma * Jx.transpose() + Jp * polar_var.asDiagonal() * Jp.transpose();
-    S(0, 0) += sensor_.range_sigma * sensor_.range_sigma;
-    S(1, 1) += sensor_.azimuth_sigma * sensor_.azimuth_sigma;
-    const Eigen::Vector2d nu(m.range - z[0].a, WrapAngle(m.azimuth - z[1].a));
+    HypothesisPrediction hp;
+    hp.z = Eigen::Vector2d(z[0].a, z[1].a);
+    hp.S = Jx * Sigma * Jx.transpose() + Jp * polar_var.asDiagonal() * Jp.transpose();
+    hp.weight = std::exp(pd.log_weight[h]) / total;
+    out.push_back(hp);
+  }
+  return out;
+}
+
+void SonarEkf::WeighPending(Pending& pd, const SonarMeasurement& m) const {
+  const std::vector<HypothesisPrediction> predictions = HypothesisPredictions(pd);
+  const Eigen::Vector2d noise = NoiseOf(m);
+  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
+    Eigen::Matrix2d S = predictions[h].S;
+    S(0, 0) += noise[0] * noise[0];
+    S(1, 1) += noise[1] * noise[1];
+    const Eigen::Vector2d nu(m.range - predictions[h].z[0], WrapAngle(m.azimuth - predictions[h].z[1]));
     pd.log_weight[h] += -0.5 * nu.dot(S.ldlt().solve(nu)) - 0.5 * std::log(S.determinant());
   }
   // Normalise (best = 0) and prune.
@@ -195,7 +211,7 @@ std::pair<double, int> SonarEkf::PromotePending(const std::vector<std::size_t>& 
     Eigen::Matrix3d J_polar;
     f.mean =
         SonarBackProjectJacobians(x_.segment<6>(f.pose_offset), anchor.range, anchor.azimuth, phi, &f.J_pose, &J_polar);
-    const Eigen::Vector3d var(sensor_.range_sigma * sensor_.range_sigma, sensor_.azimuth_sigma * sensor_.azimuth_sigma,
+    const Eigen::Vector3d var(anchor.sigma[0] * anchor.sigma[0], anchor.sigma[1] * anchor.sigma[1],
                               sigma_phi * sigma_phi);
     f.polar_cov = J_polar * var.asDiagonal() * J_polar.transpose();
     nf.push_back(f);
@@ -214,7 +230,8 @@ std::pair<double, int> SonarEkf::PromotePending(const std::vector<std::size_t>& 
     for (std::size_t v = 0; v < pd.views.size(); ++v) {
       const View& view = pd.views[v];
       if (v > 0) {
-        replay.push_back(Obs{view.step == step_ ? 0 : CloneOffset(view.step), offset, view.range, view.azimuth});
+        replay.push_back(
+            Obs{view.step == step_ ? 0 : CloneOffset(view.step), offset, view.range, view.azimuth, view.sigma});
       }
       for (Clone& c : clones_) {
         if (c.step == view.step) --c.users;
@@ -266,8 +283,7 @@ SonarFeatureEstimate SonarEkf::PendingEstimate(const Pending& pd) const {
   Eigen::Matrix3d J_polar;
   SonarBackProjectJacobians(xa, anchor.range, anchor.azimuth, phi, &J_pose, &J_polar);
   const double sigma_h = Spacing() / 2;
-  const Eigen::Vector3d var(sensor_.range_sigma * sensor_.range_sigma, sensor_.azimuth_sigma * sensor_.azimuth_sigma,
-                            sigma_h * sigma_h);
+  const Eigen::Vector3d var(anchor.sigma[0] * anchor.sigma[0], anchor.sigma[1] * anchor.sigma[1], sigma_h * sigma_h);
   cov += J_pose * P_.block<6, 6>(a, a) * J_pose.transpose() + J_polar * var.asDiagonal() * J_polar.transpose();
   SonarFeatureEstimate f;
   f.id = pd.id;

@@ -28,6 +28,7 @@ bool SonarEkfOptions::Check(std::string* why) const {
   if (min_extra_views < 1) return fail("min_extra_views", "must be at least 1 (a second view)");
   if (max_delay_steps < 1) return fail("max_delay_steps", "must be at least 1");
   if (!(prune_ratio >= 0 && prune_ratio < 1)) return fail("prune_ratio", "must be in [0, 1)");
+  if (confirm_views < 1 || confirm_views > 1000) return fail("confirm_views", "must be between 1 and 1000");
   if (update_block < 1) return fail("update_block", "must be at least 1");
   return true;
 }

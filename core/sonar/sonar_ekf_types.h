@@ -38,6 +38,13 @@ struct SonarEkfOptions {
   // kHypotheses: hypotheses whose weight falls below this fraction of the
   // best one's are dropped.
   double prune_ratio = 1e-4;
+  // A feature enters the state only once it has been measured in this many
+  // views; until then it waits (its elevation hypotheses weighed, as with
+  // kHypotheses) and then enters from its first view with every view
+  // replayed, kPaper at elevation 0. 1 with given correspondences; more when
+  // features come from a detector, whose one-off false detections must not
+  // enter the state.
+  int confirm_views = 1;
   // Joseph-form covariance update (true) or the shorter P - M S^-1 M^T (false).
   bool joseph = true;
   // Measurements (features) per block of the update: the result is the batch
