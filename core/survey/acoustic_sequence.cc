@@ -421,23 +421,23 @@ void CheckImages(ProblemSink& sink, const std::string& dir, bool steps_known, Ac
   }
   if (!steps_known) return;
   const std::int64_t T = seq.num_steps();
+  const std::string steps = "steps 0.." + std::to_string(T - 1);
+  const std::size_t before = sink.count();
   for (std::int64_t k = 0; k < T; ++k) {
-    if (sink.TooMany(images)) {
+    if (sink.count() - before >= static_cast<std::size_t>(kMaxProblemsPerFile)) {
       sink.Report({images, 0, 0, ""}, "too many problems; the other images were not checked");
       return;
     }
     const std::string path = SonarImagePath(dir, k);
     if (!fs::exists(path)) {
-      sink.Report({path, 0, 0, ""}, "the image of step " + std::to_string(k) +
-                                        " is missing; a version 2 acoustic "
-                                        "sequence has images/<step>.png for every step 0.." +
-                                        std::to_string(T - 1));
+      sink.Report({path, 0, 0, ""}, "the image of step " + std::to_string(k) + " is missing; a version 2 " +
+                                        "acoustic sequence has images/<step>.png for every step (" + steps + ")");
       continue;
     }
     if (sink.collecting()) {
       Guard(sink, [&] { ReadSonarImage(path, *seq.image); });
-    } else if (fs::file_size(path) == 0) {
-      sink.Report({path, 0, 0, ""}, "the image is empty");
+    } else {
+      InspectSonarImage(path, *seq.image);
     }
   }
   for (const auto& entry : fs::directory_iterator(images)) {
@@ -446,10 +446,8 @@ void CheckImages(ProblemSink& sink, const std::string& dir, bool steps_known, Ac
     const std::string stem = name.stem().string();
     if (stem.empty() || stem.find_first_not_of("0123456789") != std::string::npos) continue;
     if (stem.size() > 12 || std::stoll(stem) >= T) {
-      sink.Report({entry.path().string(), 0, 0, ""}, "an image of step " + stem +
-                                                         ", which the sequence does not "
-                                                         "have (steps 0.." +
-                                                         std::to_string(T - 1) + ", controls.csv)");
+      sink.Report({entry.path().string(), 0, 0, ""},
+                  "an image of step " + stem + ", which the sequence does not have (" + steps + ", controls.csv)");
     }
   }
 }

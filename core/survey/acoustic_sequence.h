@@ -101,7 +101,8 @@ struct AcousticSequence {
 
 // Reads sonar.json, controls.csv, measurements.csv and the optional truth/
 // from a folder; for version 2 it checks that images/<step>.png exists for
-// every step (the images themselves are read with ReadSonarImage). Throws
+// every step and is a complete grey PNG of the image block's size (the
+// pixels are read with ReadSonarImage). Throws
 // InputError (file, line, column, field) on the first problem.
 AcousticSequence ReadAcousticSequence(const std::string& dir);
 // Collects every problem instead of stopping at the first; also decodes every

@@ -13,12 +13,16 @@ namespace hull {
 // images/<step>.png inside an acoustic sequence folder.
 std::string SonarImagePath(const std::string& sequence_dir, long long step);
 
-// Reads one acoustic image: CV_8UC1 or CV_16UC1 of exactly range_bins x beams.
+// Reads one acoustic image (validated by core/image: complete, uncorrupted)
+// as CV_8UC1 or CV_16UC1 of exactly range_bins x beams.
 // Throws InputError naming the file when it is missing, unreadable,
 // truncated, not grey, not 8/16-bit or of another size.
 cv::Mat ReadSonarImage(const std::string& path, const SonarImageFormat& format);
 
-// Writes an 8- or 16-bit single-channel image as PNG, atomically.
+// The same checks from the file's container and header alone (no decoding).
+void InspectSonarImage(const std::string& path, const SonarImageFormat& format);
+
+// Writes an 8- or 16-bit single-channel image as PNG, atomically (core/image).
 void WriteSonarImage(const std::string& path, const cv::Mat& image);
 
 }  // namespace hull
