@@ -56,6 +56,10 @@ void SequenceInfo(const AcousticSequence& s, const std::string& path) {
   std::printf("sensor          range %.2f..%.2f m, azimuth fov %.1f deg, elevation fov %.1f deg\n", s.sensor.range_min,
               s.sensor.range_max, s.sensor.azimuth_fov * 180 / M_PI, s.sensor.elevation_fov * 180 / M_PI);
   std::printf("truth           %s\n", s.truth ? "present" : "absent");
+  if (s.image) {
+    std::printf("images          %d range bins x %d beams (version 2)%s\n", s.image->range_bins, s.image->beams,
+                s.has_measurements ? "" : ", no measurements.csv");
+  }
 }
 
 void MeshInfo(const std::string& path, double scale) {

@@ -25,9 +25,16 @@ class FastRng {
   double Open() { return (static_cast<double>(Next() >> 11) + 1.0) * 0x1.0p-53; }
   // Gamma(looks, 1/looks): mean 1, the intensity of `looks` averaged looks.
   double Gamma(int looks) {
-    double prod = 1.0;
-    for (int i = 0; i < looks; ++i) prod *= Open();
-    return -std::log(prod) / looks;
+    // -log of a product of uniforms, taking the log before the product underflows.
+    double prod = 1.0, log_sum = 0.0;
+    for (int i = 0; i < looks; ++i) {
+      prod *= Open();
+      if (prod < 1e-200) {
+        log_sum += std::log(prod);
+        prod = 1.0;
+      }
+    }
+    return -(log_sum + std::log(prod)) / looks;
   }
 
  private:

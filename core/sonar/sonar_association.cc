@@ -12,27 +12,34 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The standard normal quantile (Acklam's rational approximation, relative
-// error below 1.2e-9).
-double NormalQuantile(double p) {
-  static const double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
-                             1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
-  static const double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
-                             6.680131188771972e+01, -1.328068155288572e+01};
-  static const double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
-                             -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
-  static const double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
-                             3.754408661907416e+00};
-  const double low = 0.02425;
-  if (p < low) {
-    const double q = std::sqrt(-2 * std::log(p));
-    return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
-           ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
+// The regularised upper incomplete gamma function Q(a, x) (series below
+// a + 1, Lentz's continued fraction above; Numerical Recipes 6.2).
+double GammaQ(double a, double x) {
+  if (x <= 0) return 1.0;
+  const double log_prefix = -x + a * std::log(x) - std::lgamma(a);
+  if (x < a + 1) {
+    double term = 1 / a, sum = term;
+    for (int n = 1; n < 1000 && std::abs(term) > 1e-16 * std::abs(sum); ++n) {
+      term *= x / (a + n);
+      sum += term;
+    }
+    return 1 - sum * std::exp(log_prefix);
   }
-  if (p > 1 - low) return -NormalQuantile(1 - p);
-  const double q = p - 0.5, r = q * q;
-  return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
-         (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
+  const double tiny = 1e-300;
+  double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
+  for (int i = 1; i < 1000; ++i) {
+    const double an = -i * (i - a);
+    b += 2;
+    d = an * d + b;
+    if (std::abs(d) < tiny) d = tiny;
+    c = b + an / c;
+    if (std::abs(c) < tiny) c = tiny;
+    d = 1 / d;
+    const double delta = d * c;
+    h *= delta;
+    if (std::abs(delta - 1) < 1e-16) break;
+  }
+  return std::exp(log_prefix) * h;
 }
 
 double WrapInnovation(double a) { return std::remainder(a, 2 * M_PI); }
@@ -139,9 +146,15 @@ class Jcbb {
 double ChiSquareQuantile(double p, int dof) {
   if (!(p > 0 && p < 1) || dof < 1) throw std::invalid_argument("ChiSquareQuantile: needs 0 < p < 1 and dof >= 1");
   if (dof == 2) return -2 * std::log(1 - p);
-  const double k = dof, z = NormalQuantile(p);
-  const double t = 1 - 2 / (9 * k) + z * std::sqrt(2 / (9 * k));
-  return k * t * t * t;
+  // P(X > x) = Q(dof / 2, x / 2), decreasing in x: bisection.
+  const auto tail = [&](double x) { return GammaQ(dof / 2.0, x / 2); };
+  double lo = 0, hi = dof + 10.0;
+  while (tail(hi) > 1 - p) hi *= 2;
+  for (int it = 0; it < 200 && hi - lo > 1e-12 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (tail(mid) > 1 - p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 Eigen::MatrixXd IndividualDistances(const AssociationInput& in, double gate_probability) {

@@ -19,8 +19,7 @@
 namespace hull {
 
 // The chi-square distribution's quantile: P(X <= q) = p for dof degrees of
-// freedom (exact for 2, Wilson-Hilferty otherwise: within 0.5 % for the
-// probabilities used in gating).
+// freedom (the regularised incomplete gamma function, inverted by bisection).
 double ChiSquareQuantile(double p, int dof);
 
 struct AssociationInput {

@@ -44,7 +44,7 @@ struct SonarDetectorOptions {
   double min_contrast = 60.0;
   // Non-maximum suppression: the peak is the largest value within this many
   // rows and columns.
-  int nms_rows = 3, nms_cols = 2;
+  int nms_rows = 2, nms_cols = 2;
   // Point-likeness: smaller / larger curvature at the peak, measured after a
   // Gaussian of shape_sigma pixels (0 accepts ridges).
   double min_point_ratio = 0.15;
