@@ -310,7 +310,7 @@ double SonarEkf::Update(const std::vector<Obs>& obs) {
   return nis;
 }
 
-void SonarEkf::Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb) {
+int SonarEkf::Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb) {
   const Eigen::Index N = x_.size(), n = b.size();
   x_.conservativeResize(N + n);
   x_.tail(n) = b;
@@ -318,6 +318,7 @@ void SonarEkf::Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const 
   P_.bottomLeftCorner(n, N) = C;
   P_.topRightCorner(N, n) = C.transpose();
   P_.bottomRightCorner(n, n) = 0.5 * (B_bb + B_bb.transpose());
+  return static_cast<int>(N);
 }
 
 void SonarEkf::RemoveBlock(int offset, int size) {

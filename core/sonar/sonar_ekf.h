@@ -153,7 +153,8 @@ class SonarEkf {
   double Update(const std::vector<Obs>& obs);
   // Appends blocks to the state: mean b, covariance of the new block B_bb and
   // cross-covariance with the existing state C (rows: new, cols: old).
-  void Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb);
+  // Returns the offset of the first new row.
+  int Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb);
   void RemoveBlock(int offset, int size);
   // kPaper: every new feature of the step enters the state.
   void InitialisePaper(const std::vector<const SonarMeasurement*>& fresh);

@@ -25,9 +25,16 @@ struct NewFeature {
   Eigen::Matrix3d polar_cov = Eigen::Matrix3d::Zero();
 };
 
-// Adds features in one resize: C = J P(pose block, :), B_ij = J_i P(a_i, a_j) J_j^T.
-void AddFeatureBlocks(const std::vector<NewFeature>& nf, const Eigen::MatrixXd& P, Eigen::VectorXd& b,
-                      Eigen::MatrixXd& C, Eigen::MatrixXd& B) {
+// The blocks that append new features in one resize: means b,
+// cross-covariances C = J P(pose block, :) and B_ij = J_i P(a_i, a_j) J_j^T.
+struct FeatureBlocks {
+  Eigen::VectorXd b;
+  Eigen::MatrixXd C, B;
+};
+FeatureBlocks MakeFeatureBlocks(const std::vector<NewFeature>& nf, const Eigen::MatrixXd& P) {
+  FeatureBlocks out;
+  Eigen::VectorXd& b = out.b;
+  Eigen::MatrixXd &C = out.C, &B = out.B;
   const Eigen::Index n = 3 * static_cast<Eigen::Index>(nf.size()), N = P.rows();
   b.resize(n);
   C.resize(n, N);
@@ -46,6 +53,7 @@ void AddFeatureBlocks(const std::vector<NewFeature>& nf, const Eigen::MatrixXd& 
       B.block<3, 3>(rj, ri) = Bij.transpose();
     }
   }
+  return out;
 }
 
 }  // namespace
@@ -66,11 +74,8 @@ void SonarEkf::InitialisePaper(const std::vector<const SonarMeasurement*>& fresh
     f.polar_cov = J_polar * var.asDiagonal() * J_polar.transpose();
     nf.push_back(f);
   }
-  Eigen::VectorXd b;
-  Eigen::MatrixXd C, B;
-  AddFeatureBlocks(nf, P_, b, C, B);
-  const int base = static_cast<int>(x_.size());
-  Append(b, C, B);
+  const FeatureBlocks blocks = MakeFeatureBlocks(nf, P_);
+  const int base = Append(blocks.b, blocks.C, blocks.B);
   for (std::size_t i = 0; i < nf.size(); ++i) {
     features_[nf[i].id] = FeatureSlot{base + 3 * static_cast<int>(i), nf[i].observations, nf[i].first_step};
   }
@@ -86,11 +91,10 @@ int SonarEkf::CloneOffset(std::int64_t step) const {
 void SonarEkf::EnsureClone() {
   if (!clones_.empty() && clones_.back().step == step_) return;
   // Stochastic clone of the current pose: identical mean, fully correlated.
-  const int offset = static_cast<int>(x_.size());
   const Eigen::VectorXd b = x_.head<6>();
   const Eigen::MatrixXd C = P_.topRows<6>();
   const Eigen::MatrixXd B = P_.topLeftCorner<6, 6>();
-  Append(b, C, B);
+  const int offset = Append(b, C, B);
   clones_.push_back(Clone{step_, offset, 0});
 }
 
@@ -216,11 +220,8 @@ std::pair<double, int> SonarEkf::PromotePending(const std::vector<std::size_t>& 
     f.polar_cov = J_polar * var.asDiagonal() * J_polar.transpose();
     nf.push_back(f);
   }
-  Eigen::VectorXd b;
-  Eigen::MatrixXd C, B;
-  AddFeatureBlocks(nf, P_, b, C, B);
-  const int base = static_cast<int>(x_.size());
-  Append(b, C, B);
+  const FeatureBlocks blocks = MakeFeatureBlocks(nf, P_);
+  const int base = Append(blocks.b, blocks.C, blocks.B);
   // ... then replay the later views against the poses they were taken from.
   std::vector<Obs> replay;
   for (std::size_t j = 0; j < which.size(); ++j) {

@@ -191,6 +191,22 @@ SonarImageRunResult RunSonarImages(const AcousticSequence& seq, const std::funct
   return result;
 }
 
+SonarGivenComparison CompareWithGiven(const SonarImageRunResult& images, const SonarRunResult& given) {
+  std::map<std::int64_t, double> error;  // true feature -> the given run's final error
+  for (std::size_t i = 0; i < given.final_features.size(); ++i) {
+    if (given.final_features[i].in_state) error[given.final_features[i].id] = given.final_feature_errors[i];
+  }
+  SonarGivenComparison c;
+  for (const SonarFeatureEstimate& f : images.run.final_features) {
+    const auto it = images.truth_of.find(f.id);
+    if (!f.in_state || it == images.truth_of.end() || !error.count(it->second)) continue;
+    c.given_error += error[it->second];
+    ++c.features;
+  }
+  if (c.features > 0) c.given_error /= c.features;
+  return c;
+}
+
 SonarImageRunResult RunSonarImages(const AcousticSequence& seq, const std::string& dir,
                                    const SonarImageRunOptions& options, Progress* progress) {
   if (!seq.image) {

@@ -89,6 +89,15 @@ struct SonarImageRunResult {
   double track_seconds = 0;         // association and the EKF
 };
 
+// The comparison: the final mean error of a run with the given
+// correspondences (measurements.csv of the same sequence) over the true
+// features that the image run's final in-state features stand for.
+struct SonarGivenComparison {
+  int features = 0;        // image-run features with truth that the given run also has in its state
+  double given_error = 0;  // the given run's mean final error over their true features (m)
+};
+SonarGivenComparison CompareWithGiven(const SonarImageRunResult& images, const SonarRunResult& given);
+
 // Runs the chain with the images of step k from image_of_step(k). Throws
 // OptionError when options.Check() fails, hull::Cancelled when the progress
 // asks to stop, and whatever image_of_step throws.

@@ -20,7 +20,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -92,18 +91,7 @@ void Accuracy(const char* preset, int seeds, hull::SonarInit init) {
     g.ekf.init = init;
     g.keep_features = false;
     const auto given = hull::RunSonarSequence(sim.sequence, g);
-    std::map<std::int64_t, double> ge;
-    for (std::size_t i = 0; i < given.final_features.size(); ++i) {
-      if (given.final_features[i].in_state) ge[given.final_features[i].id] = given.final_feature_errors[i];
-    }
-    double sum = 0;
-    int n = 0;
-    for (const auto& f : r.run.final_features) {
-      const auto it = r.truth_of.find(f.id);
-      if (!f.in_state || it == r.truth_of.end() || it->second < 0 || !ge.count(it->second)) continue;
-      sum += ge[it->second];
-      ++n;
-    }
+    const hull::SonarGivenComparison c = hull::CompareWithGiven(r, given);
     const auto& e = r.evaluation;
     rate += e.mean_detection_rate;
     worst = std::min(worst, e.min_detection_rate);
@@ -114,8 +102,8 @@ void Accuracy(const char* preset, int seeds, hull::SonarInit init) {
     features += e.final_features;
     truth += e.final_features_with_truth;
     image_error += e.final_mean_error;
-    given_error += n ? sum / n : 0;
-    if (n) ratios.push_back(e.final_mean_error / (sum / n));
+    given_error += c.given_error;
+    if (c.features > 0) ratios.push_back(e.final_mean_error / c.given_error);
   }
   std::sort(ratios.begin(), ratios.end());
   std::printf(

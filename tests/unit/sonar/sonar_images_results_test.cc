@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <map>
 
 #include "simulate/sonar_image_simulator.h"
 #include "sonar/sonar_image_runner.h"
@@ -41,18 +40,9 @@ Totals RunLayout(const std::string& preset, int seeds, SonarInit init) {
     EXPECT_GE(e.mean_detection_rate, 0.9) << preset << " seed " << seed;
     EXPECT_EQ(e.duplicate_features, 0) << preset << " seed " << seed;
     // The given correspondences' error over the same true features.
-    std::map<std::int64_t, double> given_error;
-    for (std::size_t i = 0; i < given.final_features.size(); ++i) {
-      if (given.final_features[i].in_state) given_error[given.final_features[i].id] = given.final_feature_errors[i];
-    }
-    double ge = 0;
-    int n = 0;
-    for (const SonarFeatureEstimate& f : r.run.final_features) {
-      const std::int64_t truth = r.truth_of.count(f.id) ? r.truth_of.at(f.id) : -1;
-      if (!f.in_state || truth < 0 || !given_error.count(truth)) continue;
-      ge += given_error[truth];
-      ++n;
-    }
+    const SonarGivenComparison c = CompareWithGiven(r, given);
+    const int n = c.features;
+    const double ge = c.given_error;
     EXPECT_EQ(n, e.final_features_with_truth) << preset << " seed " << seed;
     EXPECT_GE(n, preset == "tank" ? 5 : 6) << preset << " seed " << seed << ": most vertices end in the state";
     ++t.runs;
@@ -63,7 +53,7 @@ Totals RunLayout(const std::string& preset, int seeds, SonarInit init) {
     t.associations += e.associations;
     t.wrong += e.wrong_associations;
     t.image_error += e.final_mean_error;
-    t.given_error += n > 0 ? ge / n : 0;
+    t.given_error += ge;
     t.features += n;
   }
   t.detection_rate /= t.runs;
