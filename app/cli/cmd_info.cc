@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "geometry/mesh_io.h"
 #include "survey/acoustic_sequence.h"
+#include "survey/survey_import.h"
 #include "survey/survey_io.h"
 
 namespace hull::cli {
@@ -16,7 +17,9 @@ const char* kHelp = R"(usage: hullinspect-cli info PATH [--scale S]
 
 Summarises a survey bundle (folder with survey.json), an acoustic sequence
 (folder with sonar.json) or a mesh file (STL, PLY, OBJ, OFF, glTF, ... also
-.gz). --scale applies a scale to a mesh on load (e.g. 59.4 for the DTC model).
+.gz; STEP and IGES through the step-iges plugin, which also reports the
+file's unit, surface count and tessellation), or a survey a plugin converts.
+--scale applies a scale to a mesh on load (e.g. 59.4 for the DTC model).
 )";
 
 void BundleInfo(const SurveyBundle& b) {
@@ -62,12 +65,20 @@ void SequenceInfo(const AcousticSequence& s, const std::string& path) {
   }
 }
 
+// What an importer plugin reported (unit, surface count, ...).
+void PrintImportReport(const std::vector<std::pair<std::string, std::string>>& report) {
+  for (const auto& [key, value] : report) std::printf("%-15s %s\n", key.c_str(), value.c_str());
+}
+
 void MeshInfo(const std::string& path, double scale) {
   MeshLoadOptions lo;
   lo.scale = scale;
   OrientationReport rep;
   lo.orientation = &rep;
+  std::vector<std::pair<std::string, std::string>> report;
+  lo.import_report = &report;
   const TriangleMesh m = LoadMesh(path, lo);
+  PrintImportReport(report);
   const auto box = m.Bounds();
   std::printf("mesh            %s\n", path.c_str());
   std::printf("vertices        %zu\n", m.num_vertices());
@@ -96,14 +107,14 @@ int RunInfo(const CommandArgs& argv) {
   if (a.positionals().size() != 1) throw UsageError("expected one path");
   const std::string path = a.positionals()[0];
   namespace fs = std::filesystem;
-  if (fs::is_directory(path)) {
-    if (fs::exists(fs::path(path) / "survey.json")) {
-      BundleInfo(ReadSurveyBundle(path));
-    } else if (fs::exists(fs::path(path) / "sonar.json")) {
-      SequenceInfo(ReadAcousticSequence(path), path);
-    } else {
-      throw InputError({path, 0, 0, ""}, "holds neither survey.json nor sonar.json");
-    }
+  if (fs::is_directory(path) && fs::exists(fs::path(path) / "sonar.json")) {
+    SequenceInfo(ReadAcousticSequence(path), path);
+  } else if (fs::is_directory(path) || (!IsMeshFile(path) && IsSurveyPath(path))) {
+    // A bundle folder, or a survey log a plugin converts into one.
+    std::vector<std::pair<std::string, std::string>> report;
+    const SurveyBundle bundle = OpenSurveyBundle(path, &report);
+    PrintImportReport(report);
+    BundleInfo(bundle);
   } else {
     MeshInfo(path, a.GetDouble("scale", 1.0));
   }

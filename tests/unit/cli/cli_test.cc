@@ -40,7 +40,8 @@ CliRun Cli(const std::vector<std::string>& args) {
   return r;
 }
 
-const std::vector<std::string> kCommands = {"simulate", "validate", "info", "align", "run", "adjust", "map", "sonar"};
+const std::vector<std::string> kCommands = {"simulate", "validate", "info",  "align",  "run",
+                                            "adjust",   "map",      "sonar", "export", "plugins"};
 
 TEST(Cli, EveryCommandHasHelp) {
   for (const std::string& c : kCommands) {
