@@ -21,7 +21,9 @@ namespace {
 
 std::string SizeText(int w, int h) { return std::to_string(w) + "x" + std::to_string(h); }
 
-void ApplyRequirements(const ImageInfo& info, const std::string& name, const ImageRequirements& r) {
+}  // namespace
+
+void CheckImageRequirements(const ImageInfo& info, const std::string& name, const ImageRequirements& r) {
   if ((r.width > 0 || r.height > 0) && (info.width != r.width || info.height != r.height)) {
     Fail(name, "the image is " + SizeText(info.width, info.height) + "; expected " + SizeText(r.width, r.height) +
                    (r.size_source.empty() ? std::string() : " (" + r.size_source + ")"));
@@ -36,6 +38,8 @@ void ApplyRequirements(const ImageInfo& info, const std::string& name, const Ima
                    " (all images of a set must share bit depth and channels)");
   }
 }
+
+namespace {
 
 std::string ReadBytes(const std::string& path) {
   std::error_code ec;
@@ -62,7 +66,7 @@ int ImageInfo::CvType() const { return CV_MAKETYPE(bit_depth == 16 ? CV_16U : CV
 
 ImageInfo InspectImageBytes(std::string_view bytes, const std::string& name, const ImageRequirements& required) {
   const ImageInfo info = WalkImageContainer(bytes, name);
-  ApplyRequirements(info, name, required);
+  CheckImageRequirements(info, name, required);
   return info;
 }
 

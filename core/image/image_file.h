@@ -45,6 +45,10 @@ struct ImageRequirements {
   std::string layout_source;
 };
 
+// Throws InputError naming `name` when `info` breaks a requirement (the
+// checks InspectImageFile applies after reading the header).
+void CheckImageRequirements(const ImageInfo& info, const std::string& name, const ImageRequirements& required);
+
 // Walks the file's container and reads its header without decoding pixels,
 // then applies the requirements. Throws InputError naming `path` when the
 // file cannot be read, is neither PNG nor JPEG, is truncated or corrupt, has
