@@ -14,8 +14,10 @@
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "cli/sonar_image_output.h"
+#include "cli/sonar_smoother_output.h"
 #include "sonar/sonar_image_runner.h"
 #include "sonar/sonar_runner.h"
+#include "sonar/sonar_smoother_run.h"
 #include "survey/acoustic_sequence.h"
 
 namespace hull::cli {
@@ -45,6 +47,10 @@ Writes to DIR:
                 and NEES statistics when the sequence has truth
   detections.csv  (--from-images) per step and detection: position, strength,
                 the feature it measured or started, and its true feature
+  smoother_poses.csv, smoother_features.csv  (--smoother) the batch smoother's
+                poses and features with their covariances (the columns of
+                poses.csv and features.csv), errors and NEES with truth; its
+                counts, costs, timing and errors go into summary.json
 
 options:
   --from-images            features from images/ (default when measurements.csv is absent)
@@ -64,6 +70,11 @@ options:
   --max-delay N            steps a feature may wait (default 8)
   --paper-sigma F          paper: sigma_phi as a fraction of the fan (default 0.25)
   --short-form             covariance update P - K S K^T instead of Joseph
+  --smoother               after the EKF, a batch adjustment (Ceres) of every
+                           pose and feature with all measurements, started
+                           from the EKF; written beside the filter's results
+  --smoother-iterations N  its iterations at most (default 50)
+  --no-smoother-covariance skip its covariances
   --final-only             features.csv holds the last step only
   --quiet                  no progress output
 
@@ -91,14 +102,16 @@ Json Finite(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 }  // namespace
 
 int RunSonar(const CommandArgs& argv) {
-  const std::set<std::string> flags = {"help", "short-form", "final-only", "quiet", "from-images", "from-measurements"};
+  const std::set<std::string> flags = {"help",        "short-form",        "final-only", "quiet",
+                                       "from-images", "from-measurements", "smoother",   "no-smoother-covariance"};
   Args a(argv, flags);
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
   a.AllowOnly({"out", "init", "hypotheses", "collapse", "max-delay", "paper-sigma", "short-form", "final-only", "quiet",
-               "from-images", "from-measurements", "confirm", "gate", "drop-misses", "min-contrast"});
+               "from-images", "from-measurements", "confirm", "gate", "drop-misses", "min-contrast", "smoother",
+               "smoother-iterations", "no-smoother-covariance"});
   if (a.Has("from-images") && a.Has("from-measurements")) {
     throw UsageError("--from-images and --from-measurements exclude each other");
   }
@@ -130,6 +143,14 @@ int RunSonar(const CommandArgs& argv) {
     throw OptionError(why.substr(0, colon), why.substr(colon + 2));
   }
 
+  SonarSmootherOptions smoother_options;
+  smoother_options.max_iterations = static_cast<int>(a.GetInt("smoother-iterations", smoother_options.max_iterations));
+  smoother_options.covariances = !a.Has("no-smoother-covariance");
+  if (!smoother_options.Check(&why)) {
+    const auto colon = why.find(':');
+    throw OptionError(why.substr(0, colon), why.substr(colon + 2));
+  }
+
   const std::string dir = SequenceFolder(a.positionals()[0]);
   const AcousticSequence seq = ReadAcousticSequence(dir);
   const bool from_images = a.Has("from-images") || (!a.Has("from-measurements") && !seq.has_measurements);
@@ -144,6 +165,11 @@ int RunSonar(const CommandArgs& argv) {
     options = image_options.run;
   }
   const SonarRunResult r = images ? images->run : RunSonarSequence(seq, options, &progress);
+  std::optional<SonarSmootherRun> smoother;
+  if (a.Has("smoother")) {
+    smoother = RunSonarSmoother(seq, r, images ? AssociatedMeasurements(*images) : seq.measurements, smoother_options,
+                                images ? &images->truth_of : nullptr, &progress);
+  }
   progress.Finish();
   std::filesystem::create_directories(out);
   if (images) WriteSonarDetections(*images, (std::filesystem::path(out) / "detections.csv").string());
@@ -292,6 +318,12 @@ int RunSonar(const CommandArgs& argv) {
     sum.Set("truth", std::move(t));
   }
   if (images) sum.Set("images", SonarImageSummary(*images));
+  if (smoother) {
+    sum.Set("smoother", SonarSmootherSummary(*smoother, smoother_options));
+    WriteSmootherPoses(*smoother, seq, (std::filesystem::path(out) / "smoother_poses.csv").string());
+    WriteSmootherFeatures(*smoother, last.estimate.step,
+                          (std::filesystem::path(out) / "smoother_features.csv").string());
+  }
   WriteFileAtomic((std::filesystem::path(out) / "summary.json").string(), sum.Dump());
 
   std::printf("%s: %zu steps, %zu features (%d in the state), %s initialisation, %.1f steps/s\n", dir.c_str(),
@@ -307,7 +339,23 @@ int RunSonar(const CommandArgs& argv) {
     std::printf("from images: %.1f %% of the visible true features detected per frame, %d of %d associations wrong\n",
                 100 * e.mean_detection_rate, e.wrong_associations, e.associations);
   }
-  std::printf("wrote %s/{poses.csv,features.csv,summary.json%s}\n", out.c_str(), images ? ",detections.csv" : "");
+  if (smoother) {
+    const SonarSmootherResult& sr = smoother->result;
+    int held_out = 0;
+    for (const SonarSmoothedFeature& f : sr.features) held_out += !f.smoothed;
+    std::printf(
+        "smoother: %d iterations, cost %.4g -> %.4g, %d features held out (elevation not observable), "
+        "%.1f ms + %.1f ms covariances%s\n",
+        sr.iterations, sr.initial_cost, sr.final_cost, held_out, 1e3 * sr.solve_seconds, 1e3 * sr.covariance_seconds,
+        sr.covariance_ok || !smoother_options.covariances ? "" : " (FAILED)");
+    if (smoother->errors) {
+      const SonarSmootherErrors& e = *smoother->errors;
+      std::printf("smoother: final mean feature error %.4f m; position error %.4f m; joint NEES %.2f / %d dof\n",
+                  e.mean_feature_error, e.position, e.joint_nees, e.joint_nees_dof);
+    }
+  }
+  std::printf("wrote %s/{poses.csv,features.csv,summary.json%s%s}\n", out.c_str(), images ? ",detections.csv" : "",
+              smoother ? ",smoother_poses.csv,smoother_features.csv" : "");
   return kExitOk;
 }
 
