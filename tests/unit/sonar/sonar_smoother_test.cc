@@ -37,24 +37,21 @@ TEST(SonarSmoother, MeasurementJacobiansMatchCentralDifferences) {
     Eigen::Matrix<double, 2, 6> Jx;
     Eigen::Matrix<double, 2, 3> Jp;
     SonarMeasurementResidual(pose, p, z[0], z[1], sigma, &Jx, &Jp);
+    // Central differences over the 9 parameters (pose, then point).
+    const auto residual = [&](const Eigen::Matrix<double, 9, 1>& v) {
+      return SonarMeasurementResidual(v.head<6>(), v.tail<3>(), z[0], z[1], sigma, nullptr, nullptr);
+    };
+    Eigen::Matrix<double, 9, 1> v;
+    v << pose, p;
+    Eigen::Matrix<double, 2, 9> J;
+    J << Jx, Jp;
     const double h = 1e-6;
-    for (int i = 0; i < 6; ++i) {
-      Vector6d a = pose, b = pose;
+    for (int i = 0; i < 9; ++i) {
+      Eigen::Matrix<double, 9, 1> a = v, b = v;
       a[i] += h;
       b[i] -= h;
-      const Eigen::Vector2d d = (SonarMeasurementResidual(a, p, z[0], z[1], sigma, nullptr, nullptr) -
-                                 SonarMeasurementResidual(b, p, z[0], z[1], sigma, nullptr, nullptr)) /
-                                (2 * h);
-      EXPECT_LT((d - Jx.col(i)).norm(), 1e-5 * (1 + d.norm())) << "pose column " << i << " trial " << trial;
-    }
-    for (int i = 0; i < 3; ++i) {
-      Eigen::Vector3d a = p, b = p;
-      a[i] += h;
-      b[i] -= h;
-      const Eigen::Vector2d d = (SonarMeasurementResidual(pose, a, z[0], z[1], sigma, nullptr, nullptr) -
-                                 SonarMeasurementResidual(pose, b, z[0], z[1], sigma, nullptr, nullptr)) /
-                                (2 * h);
-      EXPECT_LT((d - Jp.col(i)).norm(), 1e-5 * (1 + d.norm())) << "point column " << i << " trial " << trial;
+      const Eigen::Vector2d d = (residual(a) - residual(b)) / (2 * h);
+      EXPECT_LT((d - J.col(i)).norm(), 1e-5 * (1 + d.norm())) << "column " << i << " trial " << trial;
     }
   }
 }
