@@ -130,6 +130,28 @@ TEST(SonarSmoother, HoldsOutPointsWhoseElevationIsNotObservable) {
   EXPECT_EQ(r.measurements_used, 3);
 }
 
+// Progress is reported through the Ceres iterations to the end, and a
+// cancel request stops the solve with hull::Cancelled.
+TEST(SonarSmoother, ReportsProgressAndStopsWhenCancelled) {
+  SonarSimulationOptions so;
+  so.seed = 2;
+  const AcousticSequence seq = SimulateSonar(so);
+  const SonarSmootherInput in = SonarSmootherInputFrom(seq, RunSonarSequence(seq), seq.measurements);
+  double last = -1;
+  CallbackProgress done([&](double f, const std::string&) { last = f; });
+  SmoothSonar(in, {}, &done);
+  EXPECT_EQ(last, 1.0);
+  struct CancelAtIteration final : Progress {
+    bool cancelled = false;
+    void Update(double, const std::string& message) override {
+      cancelled = cancelled || message.find("iteration") != std::string::npos;
+    }
+    bool Cancelled() const override { return cancelled; }
+  } cancel;
+  EXPECT_THROW(SmoothSonar(in, {}, &cancel), Cancelled);
+  EXPECT_TRUE(cancel.cancelled);
+}
+
 struct Scores {
   std::vector<double> ekf_paper, ekf, smoother, point_nees, ekf_track, smoother_track;
   double joint_nees = 0, joint_dof = 0;
