@@ -1,7 +1,7 @@
 // bench_sonar_smoother: the batch smoother after the sonar EKF (issue 11).
 //
 //   bench_sonar_smoother [--seeds N] [--layouts prism,tank,above] [--no-accuracy] [--no-timing]
-//                        [--accuracy-steps T] [--steps T1,T2] [--extra-features N]
+//                        [--images] [--accuracy-steps T] [--steps T1,T2] [--extra-features N]
 //
 // Accuracy (N seeded sequences per layout, default 20): the final mean
 // feature error of the EKF with the paper's initialisation (--init paper),
@@ -14,7 +14,9 @@
 // the presets' (prism and above: the same sweep, sampled more densely).
 // Timing: the smoother (solve and covariances) on the prism trajectory with
 // T = 21 and 500 steps (8 vertices plus --extra-features random points), one
-// thread. --extra-features N: N random points near the prism in both.
+// thread. --images: also the image chain (rendered images, detection,
+// association, EKF) and the smoother over its associations, per layout.
+// --extra-features N: N random points near the prism in both.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "simulate/sonar_image_simulator.h"
 #include "simulate/sonar_simulator.h"
 #include "sonar/sonar_runner.h"
 #include "sonar/sonar_smoother_run.h"
@@ -156,6 +159,41 @@ void Accuracy(SonarPreset preset, int seeds, int steps, int extra) {
   std::fflush(stdout);
 }
 
+// From rendered images: the image chain (detection, JCBB, tracking, EKF with
+// hypotheses) and the smoother over its associations (detections with the
+// feature each measured or started, the detections' own sigmas).
+void ImageAccuracy(SonarPreset preset, int seeds) {
+  std::vector<double> paper, chain, smooth;
+  Ratio joint, ekf_joint;
+  int held_out = 0, features = 0;
+  for (int s = 1; s <= seeds; ++s) {
+    const SonarImageSimulation sim =
+        SimulateSonarImages(SonarImagePreset(SonarPresetName(preset), static_cast<std::uint64_t>(s)));
+    SonarRunOptions po;
+    po.ekf.init = SonarInit::kPaper;
+    paper.push_back(RunSonarSequence(sim.sequence, po).steps.back().errors->mean_feature_error);
+    const SonarImageRunResult r = RunSonarImages(
+        sim.sequence, [&](int k) { return sim.images[static_cast<std::size_t>(k)]; }, SonarImageRunOptions{});
+    chain.push_back(r.evaluation.final_mean_error);
+    const SonarStepErrors& fe = *r.run.steps.back().errors;
+    ekf_joint.Add(fe.joint_nees, fe.joint_nees_dof);
+    const SonarSmootherRun sm = RunSonarSmoother(sim.sequence, r.run, AssociatedMeasurements(r), {}, &r.truth_of);
+    smooth.push_back(sm.errors->mean_feature_error);
+    joint.Add(sm.errors->joint_nees, sm.errors->joint_nees_dof);
+    for (const SonarSmoothedFeature& f : sm.result.features) held_out += !f.smoothed;
+    features += static_cast<int>(sm.result.features.size());
+  }
+  std::printf("%s from images, %d seeds: final mean feature error, median\n", SonarPresetName(preset), seeds);
+  std::printf("  EKF --init paper, given measurements %.4f m\n", Median(paper));
+  std::printf("  image chain (EKF hypotheses)         %.4f m\n", Median(chain));
+  std::printf(
+      "  smoother over its associations       %.4f m   = %.2f x the paper's filter; %d of %d features held out\n",
+      Median(smooth), Median(smooth) / Median(paper), held_out, features);
+  joint.Print("smoother: last pose + points");
+  ekf_joint.Print("image chain's EKF: last pose + points");
+  std::fflush(stdout);
+}
+
 void Timing(int steps, int extra) {
   SonarSimulationOptions so;
   so.seed = 17;
@@ -181,7 +219,7 @@ void Timing(int steps, int extra) {
 
 int main(int argc, char** argv) {
   int seeds = 20, extra = 0, accuracy_steps = 0;
-  bool accuracy = true, timing = true;
+  bool accuracy = true, timing = true, images = false;
   std::string layouts = "prism,tank,above", steps = "21,500";
   for (int i = 1; i < argc; ++i) {
     const bool has_value = i + 1 < argc;
@@ -197,6 +235,8 @@ int main(int argc, char** argv) {
       extra = std::max(0, std::atoi(argv[++i]));
     } else if (!std::strcmp(argv[i], "--no-accuracy")) {
       accuracy = false;
+    } else if (!std::strcmp(argv[i], "--images")) {
+      images = true;
     } else if (!std::strcmp(argv[i], "--no-timing")) {
       timing = false;
     } else {
@@ -208,6 +248,10 @@ int main(int argc, char** argv) {
   if (accuracy) {
     std::istringstream in(layouts);
     while (std::getline(in, item, ',')) Accuracy(ParseSonarPreset(item), seeds, accuracy_steps, extra);
+  }
+  if (images) {
+    std::istringstream in(layouts);
+    while (std::getline(in, item, ',')) ImageAccuracy(ParseSonarPreset(item), seeds);
   }
   if (timing) {
     std::printf("Smoother time, prism trajectory, one thread\n");
