@@ -232,22 +232,23 @@ TEST(SurveyImagingDeterminism, SameSeedSameImagesOnAnyThreadCountOtherSeedOtherI
   NullProgress p;
   const SimulatedSurvey s1 = SimulateSurvey(o, p);
   WriteSimulatedSurvey(s1, again);
-  o.seed = 2;
-  const std::string other = dir + "_seed2";
-  fs::remove_all(other);
-  WriteSimulatedSurvey(SimulateSurvey(o, p), other);
-  int compared = 0, differ = 0;
+  int compared = 0;
   for (const auto& f : s1.bundle.images->frames) {
     for (const std::string& rel : {f.top, f.bottom}) {
       if (rel.empty()) continue;
-      const std::string bytes = ReadFileToString(again + "/" + rel);
-      EXPECT_EQ(bytes, ReadFileToString(dir + "/" + rel)) << rel;
-      if (fs::exists(other + "/" + rel)) differ += bytes != ReadFileToString(other + "/" + rel);
+      EXPECT_EQ(ReadFileToString(again + "/" + rel), ReadFileToString(dir + "/" + rel)) << rel;
       ++compared;
     }
   }
+  o.seed = 2;
+  const SimulatedSurvey s2 = SimulateSurvey(o, p);
+  const auto scene2 = MakeTrueScene(s2);
+  const auto camera2 = MakeSurveyCamera(s2.bundle.manifest, *s2.imaging, false);
+  const Pose x2 = TrueCameraPose(s2, 5, false);
+  const cv::Mat b = camera2->Render(*scene2, x2, 9);
+  EXPECT_GT(cv::norm(b, MakeSurveyCamera(s.bundle.manifest, *s.imaging, false)->Render(*scene, x2, 9), cv::NORM_L1),
+            0.0);  // another seed: another scene and albedo seen from the same pose
   EXPECT_GT(compared, 20);
-  EXPECT_GT(differ, compared / 2);
   EXPECT_EQ(ReadFileToString(again + "/truth/albedo.json"), ReadFileToString(dir + "/truth/albedo.json"));
 }
 
