@@ -19,7 +19,10 @@ const char* kHelp = R"(usage: hullinspect-cli simulate --preset NAME --out DIR [
 Writes a survey bundle (version 1) with ground truth in truth/: an HAUV
 surveying a hull with foreign structure (biofouling patches, a cylinder, a
 box), stereo or monocular camera, four-beam DVL, drifting odometry.
-Deterministic from --seed.
+Deterministic from --seed. With --images, a version 2 bundle: the same plus
+every keyframe's camera images (images/<keyframe>_top.png, _bottom.png; 8-bit
+grey, strobe-lit, rendered from the truth) and truth/scene.ply (the true
+surface in M) with truth/albedo.json (its albedo, for scoring).
 
 presets:
   demo       stretch of hull bottom around the keel, stereo, ~300 keyframes
@@ -47,6 +50,7 @@ options (each overrides the preset):
   --up X,Y,Z               hull up axis in the mesh (default 0,0,1)
   --waterline W            waterline height along up (default: draft, or 60 % of the mesh height)
   --camera stereo|mono
+  --camera-scale S         scale the cameras' pixel grid (1360x1024 at 1; 0.5: 680x512)
   --coverage bottom|full   bottom stretch, or the whole bottom and both sides
   --start M --end M        survey extent along the hull (m from the stern)
   --half-width M           bottom tracks within +-M of the centreline
@@ -60,6 +64,10 @@ options (each overrides the preset):
   --servo-bias-deg D --model-pose-error-m M --model-pose-error-deg D
   --extrinsic-error-m M --extrinsic-error-deg D
   --write-landmarks        also write landmarks.csv (noisy initial positions)
+  --images                 also render the camera images (bundle version 2)
+  --image-dropout P        probability that an image is missing (dropped frame; default 0)
+  --attenuation C          water attenuation, 1/m (default 0.3)
+  --backscatter B          water backscatter, 1/(m sr) (default 0.0015)
   --gen-extras             also write DIR.gen/ (object meshes, wrong matches,
                            DVL drop-outs) for ../shared/tools/check-bundle.py
   --quiet                  no progress output
@@ -96,6 +104,7 @@ int RunSimulate(const CommandArgs& argv) {
                "up",
                "waterline",
                "camera",
+               "camera-scale",
                "coverage",
                "start",
                "end",
@@ -116,9 +125,12 @@ int RunSimulate(const CommandArgs& argv) {
                "extrinsic-error-m",
                "extrinsic-error-deg",
                "write-landmarks",
+               "images",
+               "image-dropout",
+               "attenuation",
+               "backscatter",
                "gen-extras",
                "quiet",
-               "images",
                "range-bins",
                "beams"});
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
@@ -138,8 +150,8 @@ int RunSimulate(const CommandArgs& argv) {
                 sim.sequence.measurements.size());
     return kExitOk;
   }
-  if (a.Has("images") || a.Has("range-bins") || a.Has("beams")) {
-    throw UsageError("--images, --range-bins and --beams need a sonar preset (sonar-prism, sonar-tank, sonar-above)");
+  if (a.Has("range-bins") || a.Has("beams")) {
+    throw UsageError("--range-bins and --beams need a sonar preset (sonar-prism, sonar-tank, sonar-above)");
   }
   if (preset.rfind("sonar-", 0) == 0) {
     const AcousticSequence seq = SimulateSonarPreset(preset.substr(6), static_cast<std::uint64_t>(a.GetInt("seed", 1)));
@@ -159,6 +171,7 @@ int RunSimulate(const CommandArgs& argv) {
     if (c != "stereo" && c != "mono") throw UsageError("--camera expects stereo or mono");
     o.camera = c == "stereo" ? CameraType::kStereo : CameraType::kMono;
   }
+  o.camera_scale = a.GetDouble("camera-scale", o.camera_scale);
   if (a.Has("coverage")) {
     const std::string c = a.Get("coverage");
     if (c != "bottom" && c != "full") throw UsageError("--coverage expects bottom or full");
@@ -193,14 +206,24 @@ int RunSimulate(const CommandArgs& argv) {
   o.extrinsic_error_m = a.GetDouble("extrinsic-error-m", o.extrinsic_error_m);
   o.extrinsic_error_deg = a.GetDouble("extrinsic-error-deg", o.extrinsic_error_deg);
   o.write_landmarks = a.Has("write-landmarks");
+  o.images = a.Has("images");
+  for (const char* name : {"image-dropout", "attenuation", "backscatter"}) {
+    if (a.Has(name) && !o.images) throw UsageError(std::string("--") + name + " needs --images");
+  }
+  o.imaging.image_dropout = a.GetDouble("image-dropout", o.imaging.image_dropout);
+  o.imaging.attenuation = a.GetDouble("attenuation", o.imaging.attenuation);
+  o.imaging.backscatter = a.GetDouble("backscatter", o.imaging.backscatter);
 
   ConsoleProgress progress(a.Has("quiet"));
   const SimulatedSurvey s = SimulateSurvey(o, progress);
-  WriteSimulatedSurvey(s, out, a.Has("gen-extras"));
+  WriteSimulatedSurvey(s, out, a.Has("gen-extras"), progress);
   progress.Finish();
-  std::printf("wrote %s: %zu keyframes, %zu landmarks, %zu observations, %zu objects\n", out.c_str(),
-              s.bundle.nav.size(), s.bundle.truth->landmarks.size(), s.bundle.features.size(),
-              s.bundle.truth->objects.size());
+  std::printf("wrote %s: %zu keyframes, %zu landmarks, %zu observations, %zu objects", out.c_str(), s.bundle.nav.size(),
+              s.bundle.truth->landmarks.size(), s.bundle.features.size(), s.bundle.truth->objects.size());
+  if (s.bundle.images) {
+    std::printf(", %d images (%d dropped)", s.bundle.images->present(), s.bundle.images->dropped);
+  }
+  std::printf("\n");
   return kExitOk;
 }
 

@@ -242,6 +242,19 @@ struct MeshIndex::Impl {
   };
   Span Star(int v) const { return {star_faces.data() + star_offsets[v], star_faces.data() + star_offsets[v + 1]}; }
 
+  // The range along the unit direction d at which the ray from origin meets
+  // face f's plane, in double precision (Moeller-Trumbore's t); Embree's
+  // float estimate when the ray runs parallel to the plane.
+  static double RefinedRange(const TriangleMesh& mesh, const Eigen::Vector3d& origin, const Eigen::Vector3d& d, int f,
+                             float estimate) {
+    const Face& F = mesh.faces[f];
+    const Eigen::Vector3d& v0 = mesh.vertices[F[0]];
+    const Eigen::Vector3d e1 = mesh.vertices[F[1]] - v0;
+    const Eigen::Vector3d e2 = mesh.vertices[F[2]] - v0;
+    const double det = e1.dot(d.cross(e2));
+    return det != 0 ? (origin - v0).cross(e1).dot(e2) / det : static_cast<double>(estimate);
+  }
+
   // Absolute slack added to float bounds for a query at q: covers the float
   // rounding of the BVH's vertices and of q (relative 2^-24 each) with a
   // wide safety factor.
@@ -509,16 +522,8 @@ RayHit MeshIndex::Raycast(const Eigen::Vector3d& origin, const Eigen::Vector3d& 
     rtcIntersect1(impl_->scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return out;
 
-    // Re-intersect the face's plane in double (Moeller-Trumbore's t).
     const int f = static_cast<int>(rh.hit.primID);
-    const Face& F = mesh_.faces[f];
-    const Eigen::Vector3d& v0 = mesh_.vertices[F[0]];
-    const Eigen::Vector3d e1 = mesh_.vertices[F[1]] - v0;
-    const Eigen::Vector3d e2 = mesh_.vertices[F[2]] - v0;
-    const Eigen::Vector3d pvec = d.cross(e2);
-    const double det = e1.dot(pvec);
-    double t = rh.ray.tfar;
-    if (det != 0) t = (origin - v0).cross(e1).dot(e2) / det;
+    const double t = impl_->RefinedRange(mesh_, origin, d, f, rh.ray.tfar);
     if (t > t_min) {
       if (t > t_max) return out;
       out.hit = true;
@@ -530,6 +535,85 @@ RayHit MeshIndex::Raycast(const Eigen::Vector3d& origin, const Eigen::Vector3d& 
     tnear = std::nextafter(rh.ray.tfar, std::numeric_limits<float>::infinity());
   }
   return out;
+}
+
+void MeshIndex::RaycastFan(const Eigen::Vector3d& origin, const Eigen::Vector3f* directions, int n, double t_max,
+                           RayHit* hits) const {
+  constexpr int kChunk = 256;  // rays per Embree stream call
+  RTCRayHit rays[kChunk];
+  const Eigen::Vector3d o = origin - impl_->centre;
+  const float tfar = FloatAtLeast(t_max + impl_->Margin(origin));
+  for (int begin = 0; begin < n; begin += kChunk) {
+    const int count = std::min(kChunk, n - begin);
+    for (int i = 0; i < count; ++i) {
+      RTCRayHit& rh = rays[i];
+      const Eigen::Vector3f& d = directions[begin + i];
+      rh.ray.org_x = static_cast<float>(o.x());
+      rh.ray.org_y = static_cast<float>(o.y());
+      rh.ray.org_z = static_cast<float>(o.z());
+      rh.ray.dir_x = d.x();
+      rh.ray.dir_y = d.y();
+      rh.ray.dir_z = d.z();
+      rh.ray.tnear = 0;
+      rh.ray.tfar = tfar;
+      rh.ray.time = 0;
+      rh.ray.mask = 0xFFFFFFFFu;
+      rh.ray.id = static_cast<unsigned>(i);
+      rh.ray.flags = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(impl_->scene, &context, rays, static_cast<unsigned>(count), sizeof(RTCRayHit));
+    for (int i = 0; i < count; ++i) {
+      RayHit& out = hits[begin + i];
+      out = RayHit();
+      if (rays[i].hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      const Eigen::Vector3d d = directions[begin + i].cast<double>().normalized();
+      const int f = static_cast<int>(rays[i].hit.primID);
+      const double t = impl_->RefinedRange(mesh_, origin, d, f, rays[i].ray.tfar);
+      if (!(t > 0) || t > t_max) continue;
+      out.hit = true;
+      out.range = t;
+      out.point = origin + t * d;
+      out.face = f;
+    }
+  }
+}
+
+void MeshIndex::OccludedToward(const Eigen::Vector3d* points, int n, const Eigen::Vector3d& target, double t_min,
+                               bool* blocked) const {
+  constexpr int kChunk = 256;
+  RTCRay rays[kChunk];
+  for (int begin = 0; begin < n; begin += kChunk) {
+    const int count = std::min(kChunk, n - begin);
+    for (int i = 0; i < count; ++i) {
+      const Eigen::Vector3d o = points[begin + i] - impl_->centre;
+      const Eigen::Vector3d d = target - points[begin + i];
+      const double len = d.norm();
+      RTCRay& r = rays[i];
+      r.org_x = static_cast<float>(o.x());
+      r.org_y = static_cast<float>(o.y());
+      r.org_z = static_cast<float>(o.z());
+      r.dir_x = static_cast<float>(d.x() / len);
+      r.dir_y = static_cast<float>(d.y() / len);
+      r.dir_z = static_cast<float>(d.z() / len);
+      r.tnear = static_cast<float>(t_min);
+      r.tfar = len > t_min ? static_cast<float>(len) : 0.0f;  // tfar < tnear: nothing to test
+      r.time = 0;
+      r.mask = 0xFFFFFFFFu;
+      r.id = static_cast<unsigned>(i);
+      r.flags = 0;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1M(impl_->scene, &context, rays, static_cast<unsigned>(count), sizeof(RTCRay));
+    // Embree sets tfar to -inf for an occluded ray.
+    for (int i = 0; i < count; ++i) blocked[begin + i] = std::isinf(rays[i].tfar) && rays[i].tfar < 0;
+  }
 }
 
 ClosestPoint MeshIndex::Closest(const Eigen::Vector3d& q, int hint_face) const {

@@ -61,6 +61,19 @@ class MeshIndex {
   RayHit Raycast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction, double t_max = 1e30,
                  double t_min = 0.0) const;
 
+  // Many rays from one origin (e.g. a camera's pixels): unit directions in
+  // single precision, t in (0, t_max]. Embree traces them as a coherent
+  // stream (about ten times faster per ray than Raycast); each hit is
+  // refined in double precision as Raycast refines it. hits[i] answers
+  // directions[i]. Thread-safe; n any size.
+  void RaycastFan(const Eigen::Vector3d& origin, const Eigen::Vector3f* directions, int n, double t_max,
+                  RayHit* hits) const;
+  // Whether the segment from each of `n` points to `target` is blocked by the
+  // surface, ignoring the first t_min of it (so that a point on the surface
+  // does not shadow itself). blocked[i] answers points[i].
+  void OccludedToward(const Eigen::Vector3d* points, int n, const Eigen::Vector3d& target, double t_min,
+                      bool* blocked) const;
+
   // Exact closest point on the surface. hint_face, when >= 0 (e.g. the answer
   // for a nearby query or the previous iteration), bounds the search first
   // and makes queries near the surface several times faster; the result is

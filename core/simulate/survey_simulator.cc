@@ -17,6 +17,9 @@
 #include "geometry/point_index.h"
 #include "simulate/foreign_objects.h"
 #include "simulate/random.h"
+#include "simulate/survey_imaging.h"
+#include "simulate/true_scene.h"
+#include "survey/survey_images.h"
 #include "survey/survey_io.h"
 
 namespace hull {
@@ -58,6 +61,8 @@ void SurveySimulationOptions::Check() const {
   if (!(dvl_dropout >= 0 && dvl_dropout < 1)) throw OptionError("dvl_dropout", "must be in [0, 1)");
   if (!(max_feature_range > 0.5)) throw OptionError("max_feature_range", "must be > 0.5 m");
   if (scattered_patches < 0) throw OptionError("scattered_patches", "must be >= 0");
+  if (images) imaging.Check();
+  if (!(camera_scale >= 0.05 && camera_scale <= 4)) throw OptionError("camera_scale", "must be in [0.05, 4]");
 }
 
 std::vector<std::string> SurveyPresetNames() { return {"demo", "mono", "curtiss"}; }
@@ -236,6 +241,7 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   man.vehicle = "HAUV";
   man.model_hint = "hull.ply";
   man.camera.type = o.camera;
+  if (o.camera_scale != 1.0) ScaleCamera(man.camera, o.camera_scale);
   if (o.camera == CameraType::kMono) man.camera.top_to_bottom.setZero();
   man.noise = o.noise;
   man.model_axes = ModelAxes{axes.forward, axes.up};
@@ -261,13 +267,11 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   truth.x_gM = x_gM.ToVector();
   truth.x_s_cT = x_s_cT.ToVector();
   truth.objects = PlaceObjects(o, cad, axes, fmin, umin, s_centre, keys, x_gM, man, x_s_cT, rng);
-  TriangleMesh surface = out.cad;
-  std::vector<int> face_object(out.cad.num_faces(), -1);
   for (std::size_t i = 0; i < truth.objects.size(); ++i) {
     out.object_meshes.push_back(MakeObjectMesh(truth.objects[i], o.seed * 1000003 + i));
-    surface.Append(out.object_meshes.back());
-    face_object.resize(surface.num_faces(), static_cast<int>(i));
   }
+  std::vector<int> face_object;
+  const TriangleMesh surface = TrueSurfaceMesh(out.cad, out.object_meshes, &face_object);
   const MeshIndex truth_surface(surface);
   progress.Update(0.1, "sampling features");
 
@@ -510,18 +514,49 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
     b.landmarks = std::move(init);
   }
   b.truth = std::move(truth);
+  out.albedo_seed = o.seed & ((std::uint64_t{1} << 52) - 1);  // exact in truth/albedo.json
+  if (o.images) {
+    // Version 2: which images exist (a few frames may be dropped); the
+    // pixels are rendered when the bundle is written.
+    man.version = 2;
+    man.imaging = ImagingNote{std::nullopt, std::string("strobe")};
+    SurveyImages listing;
+    for (int k = 0; k < K; ++k) {
+      Rng r = Rng::ForItem(o.seed, 3, static_cast<std::uint64_t>(k));
+      KeyframeImages f;
+      f.keyframe = k;
+      for (bool bottom : {false, true}) {
+        if (bottom && !stereo) continue;
+        ++listing.expected;
+        if (r.Bernoulli(o.imaging.image_dropout)) {
+          ++listing.dropped;
+          continue;
+        }
+        (bottom ? f.bottom : f.top) = "images/" + SurveyImageName(k, bottom);
+      }
+      listing.frames.push_back(f);
+    }
+    b.images = std::move(listing);
+    out.imaging = o.imaging;
+  }
   progress.Update(1.0, "simulated " + std::to_string(K) + " keyframes, " + std::to_string(b.features.size()) +
                            " observations of " + std::to_string(b.truth->landmarks.size()) + " landmarks");
   return out;
 }
 
 void WriteSimulatedSurvey(const SimulatedSurvey& s, const std::string& dir, bool generator_extras) {
+  NullProgress progress;
+  WriteSimulatedSurvey(s, dir, generator_extras, progress);
+}
+
+void WriteSimulatedSurvey(const SimulatedSurvey& s, const std::string& dir, bool generator_extras, Progress& progress) {
   namespace fs = std::filesystem;
   WriteSurveyBundle(s.bundle, dir);
   MeshSaveOptions mo;
   mo.binary = true;
   mo.double_precision = true;
   SaveMesh(s.cad, (fs::path(dir) / s.bundle.manifest.model_hint.value_or("hull.ply")).string(), mo);
+  if (s.imaging) WriteSurveyImages(s, dir, progress);
   if (!generator_extras) return;
   std::string gdir = dir;
   while (!gdir.empty() && gdir.back() == '/') gdir.pop_back();

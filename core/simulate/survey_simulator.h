@@ -1,10 +1,13 @@
-// The survey simulator: writes a v1 survey bundle with ground truth for a
+// The survey simulator: writes a survey bundle with ground truth for a
 // hull (the built-in parametric hull or any mesh file) carrying foreign
 // structure, surveyed by an HAUV with a servoed stereo or monocular camera
-// and a four-beam Janus DVL. Deterministic from the seed.
+// and a four-beam Janus DVL. Deterministic from the seed. Version 1 (feature
+// tracks); with `images`, version 2: the same bundle plus the camera images
+// rendered from the truth (simulate/survey_imaging.h).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +15,7 @@
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
 #include "simulate/hull_forms.h"
+#include "simulate/image_renderer.h"
 #include "simulate/survey_plan.h"
 #include "survey/survey.h"
 
@@ -42,6 +46,7 @@ struct SurveySimulationOptions {
 
   // Sensors.
   CameraType camera = CameraType::kStereo;
+  double camera_scale = 1.0;     // scales the cameras' pixel grid (1360x1024 at 1; 0.25: 340x256 for quick tests)
   NoiseModel noise;              // also written to survey.json
   double servo_bias_deg = 2.0;   // servo slop: a constant bias of random sign ...
   double servo_noise_deg = 0.3;  // ... plus noise
@@ -80,6 +85,10 @@ struct SurveySimulationOptions {
   int scattered_patches = 0;
   bool write_landmarks = false;  // landmarks.csv with noisy initial positions
 
+  // Camera images (bundle version 2): rendered when the bundle is written.
+  bool images = false;
+  UnderwaterImagingOptions imaging;  // water, strobe, sensor; image_dropout drops frames
+
   void Check() const;  // throws OptionError
 };
 
@@ -95,6 +104,8 @@ struct SimulatedSurvey {
   std::vector<TriangleMesh> object_meshes;                           // true shapes in M, one per truth object
   std::vector<std::pair<std::int64_t, std::int64_t>> wrong_matches;  // (keyframe, landmark)
   std::vector<std::pair<std::int64_t, int>> dvl_dropouts;            // (keyframe, beam 1..4)
+  std::uint64_t albedo_seed = 1;                                     // the true albedo's seed
+  std::optional<UnderwaterImagingOptions> imaging;                   // set: images to render (bundle.images lists them)
 };
 
 SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& options, Progress& progress);
@@ -102,6 +113,10 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& options, Progress&
 // Writes the bundle and its mesh (hull.ply, double precision). With
 // generator_extras, also DIR.gen/ (generator.json, objects_mesh.json,
 // wrong_matches.csv, dvl_dropouts.csv) for ../shared/tools/check-bundle.py.
+// With imaging, also renders the images (images/, truth/scene.ply,
+// truth/albedo.json; progress and cancellation between images).
+void WriteSimulatedSurvey(const SimulatedSurvey& survey, const std::string& dir, bool generator_extras,
+                          Progress& progress);
 void WriteSimulatedSurvey(const SimulatedSurvey& survey, const std::string& dir, bool generator_extras = false);
 
 }  // namespace hull

@@ -171,14 +171,38 @@ TEST(Cli, SonarFromImages) {
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("images/3.png"), std::string::npos) << r.output;
 
-  // Images need a sonar preset; a version 1 sequence has none to use.
-  r = Cli({"simulate", "--preset", "demo", "--images", "--out", tmp / "x"});
+  // The image size needs a sonar preset; a version 1 sequence has no images to use.
+  r = Cli({"simulate", "--preset", "demo", "--range-bins", "256", "--out", tmp / "x"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   const std::string v1 = tmp / "v1";
   ASSERT_EQ(Cli({"simulate", "--preset", "sonar-prism", "--out", v1}).exit_code, 0);
   r = Cli({"sonar", v1, "--from-images", "--out", tmp / "x"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("no images"), std::string::npos) << r.output;
+}
+
+TEST(Cli, SimulateCameraImages) {
+  // A version 2 survey bundle with rendered camera images (small and sparse
+  // here), valid for the validator; dropped frames are warnings.
+  const hull::testing::ScratchDir tmp("cli_camera_images");
+  const std::string bundle = tmp / "demo";
+  CliRun r = Cli({"simulate", "--preset", "demo", "--images", "--camera-scale", "0.25", "--keyframe-spacing", "1.2",
+                  "--image-dropout", "0.1", "--seed", "4", "--out", bundle, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find(" images ("), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(bundle + "/truth/scene.ply"));
+  EXPECT_TRUE(std::filesystem::exists(bundle + "/truth/albedo.json"));
+  EXPECT_NE(hull::testing::ReadText(bundle + "/survey.json").find("\"version\": 2"), std::string::npos);
+  int images = 0;
+  for (const auto& e : std::filesystem::directory_iterator(bundle + "/images")) images += e.is_regular_file();
+  EXPECT_GT(images, 20);
+  r = Cli({"validate", bundle});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("dropped frame"), std::string::npos) << r.output;
+  // The water needs images to act on.
+  r = Cli({"simulate", "--preset", "demo", "--attenuation", "0.5", "--out", tmp / "x"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--attenuation needs --images"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <random>
 #include <thread>
 
@@ -234,6 +235,65 @@ TEST(MeshIndexRaycast, FarFromTheOriginKeepsDoublePrecision) {
   EXPECT_NEAR(h.range, 10.0, 1e-9);
   EXPECT_EQ(h.point.x(), off.x());
   EXPECT_NEAR(h.point.y(), off.y() + 1.234567, 1e-9);
+}
+
+TEST(MeshIndexRaycast, FanAgreesWithSingleRays) {
+  const Vector3d centre(10, -4, 2);
+  const TriangleMesh sphere = MakeIcosphere(3.0, 4, centre);
+  const MeshIndex index(sphere);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (const Vector3d& o : {Vector3d(centre + Vector3d(0, 0, -7)), centre}) {  // outside, and inside
+    std::vector<Eigen::Vector3f> dirs;
+    for (int i = 0; i < 700; ++i) {  // more than one Embree stream chunk
+      dirs.push_back(Eigen::Vector3f(float(u(rng)), float(u(rng)), float(u(rng)) + 2.0f).normalized());
+    }
+    std::vector<RayHit> fan(dirs.size());
+    index.RaycastFan(o, dirs.data(), static_cast<int>(dirs.size()), 20.0, fan.data());
+    int hits = 0;
+    for (std::size_t i = 0; i < dirs.size(); ++i) {
+      const RayHit one = index.Raycast(o, dirs[i].cast<double>(), 20.0);
+      ASSERT_EQ(fan[i].hit, one.hit) << i;
+      if (!one.hit) continue;
+      ++hits;
+      EXPECT_NEAR(fan[i].range, one.range, 1e-9);
+      EXPECT_LT((fan[i].point - one.point).norm(), 1e-9);
+      EXPECT_NEAR((fan[i].point - sphere.vertices[sphere.faces[fan[i].face][0]]).dot(sphere.face_normals[fan[i].face]),
+                  0.0, 1e-12);
+    }
+    EXPECT_GT(hits, 300);
+  }
+  // t_max cuts the fan as it cuts a single ray.
+  const Eigen::Vector3f up(0, 0, 1);
+  RayHit h;
+  index.RaycastFan(centre + Vector3d(0, 0, -7), &up, 1, 3.9, &h);
+  EXPECT_FALSE(h.hit);
+  index.RaycastFan(centre + Vector3d(0, 0, -7), &up, 1, 4.1, &h);
+  EXPECT_TRUE(h.hit);
+}
+
+TEST(MeshIndexRaycast, OccludedTowardAgreesWithSegments) {
+  const TriangleMesh box = MakeBox(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
+  const MeshIndex index(box);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 2);
+  const Vector3d target(3.5, 0.5, 0.5);
+  std::vector<Vector3d> points;
+  for (int i = 0; i < 600; ++i) points.emplace_back(u(rng), u(rng), u(rng));
+  points.push_back(Vector3d(0, 0.5, 0.5));  // on the far face: the box shadows it
+  points.push_back(Vector3d(1, 0.5, 0.5));  // on the near face: lit (its own face is skipped by t_min)
+  std::unique_ptr<bool[]> blocked(new bool[points.size()]);
+  index.OccludedToward(points.data(), static_cast<int>(points.size()), target, 1e-6, blocked.get());
+  int shadowed = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vector3d d = target - points[i];
+    const bool expected = index.Raycast(points[i], d, d.norm(), 1e-6).hit;
+    EXPECT_EQ(blocked[i], expected) << points[i].transpose();
+    shadowed += expected;
+  }
+  EXPECT_GT(shadowed, 50);
+  EXPECT_TRUE(blocked[points.size() - 2]);
+  EXPECT_FALSE(blocked[points.size() - 1]);
 }
 
 // ---- closest point --------------------------------------------------------------

@@ -1,0 +1,279 @@
+#include "simulate/surface_albedo.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hull {
+namespace {
+
+inline float Smoothstep(float a, float b, float x) {
+  const float t = std::min(std::max((x - a) / (b - a), 0.0f), 1.0f);
+  return t * t * (3 - 2 * t);
+}
+inline float Mix(float a, float b, float t) { return a + t * (b - a); }
+inline float Fract(float x) { return x - static_cast<float>(GradientNoise::Floor(x)); }
+// Distance from x to the nearest integer.
+inline float DistanceToInteger(float x) {
+  const float f = Fract(x);
+  return std::min(f, 1 - f);
+}
+
+// The shared octaves: wavelengths 0.96 m halving down to 7.5 mm, four
+// channels each, weighted per channel (rows) and octave (columns).
+constexpr int kOctaves = 8;
+constexpr float kCoarsest = 0.96f;
+enum Channel { kBlotch = 0, kWear = 1, kTone = 2, kGrain = 3 };
+constexpr float kWeights[4][kOctaves] = {
+    {0.0f, 0.5f, 0.6f, 0.45f, 0.3f, 0.18f, 0.0f, 0.0f},  // biofilm blotches: 48 cm .. 3 cm
+    {0.0f, 0.0f, 0.0f, 0.0f, 0.5f, 0.6f, 0.4f, 0.2f},    // abraded paint: 6 cm .. 7.5 mm
+    {1.0f, 0.5f, 0.25f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f},   // paint tone: 96 cm .. 24 cm
+    {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.5f, 0.7f, 1.0f}};   // grain: 3 cm .. 7.5 mm
+// Each channel scaled to the same spread (its weights' root sum of squares).
+struct ChannelNorms {
+  float n[4];
+  ChannelNorms() {
+    for (int c = 0; c < 4; ++c) {
+      float s = 0;
+      for (int k = 0; k < kOctaves; ++k) s += kWeights[c][k] * kWeights[c][k];
+      n[c] = 1.0f / std::sqrt(s);
+    }
+  }
+};
+const ChannelNorms kNorms;
+
+// A unit vector perpendicular to n (an object's local x).
+Eigen::Vector3f Perpendicular(const Eigen::Vector3f& n) {
+  Eigen::Vector3f e = Eigen::Vector3f::UnitX() - n.x() * n;
+  if (e.norm() < 0.1f) e = Eigen::Vector3f::UnitY() - n.y() * n;
+  return e.normalized();
+}
+
+}  // namespace
+
+SurfaceMaterial MaterialOf(ObjectKind kind) {
+  switch (kind) {
+    case ObjectKind::kPatch:
+      return SurfaceMaterial::kFouling;
+    case ObjectKind::kCylinder:
+      return SurfaceMaterial::kPaintedSteel;
+    case ObjectKind::kBox:
+      return SurfaceMaterial::kBareMetal;
+  }
+  return SurfaceMaterial::kFouling;
+}
+
+SurfaceAlbedo::SurfaceAlbedo(std::uint64_t seed, const Eigen::Vector3d& forward, const Eigen::Vector3d& up)
+    : seed_(seed),
+      forward_(forward.normalized()),
+      up_(up.normalized()),
+      noise_(seed * 3 + 1),
+      coarse_(seed * 3 + 2),
+      streaks_(seed * 3 + 3) {
+  f_ = forward_.cast<float>();
+  u_ = (up_ - up_.dot(forward_) * forward_).normalized().cast<float>();
+  q_ = u_.cross(f_);
+}
+
+HI_NOISE_INLINE void SurfaceAlbedo::Layers(const float* px, const float* py, const float* pz, const float* footprint,
+                                           int m, float (&layer)[4][kLanes]) const {
+  for (auto& row : layer) std::fill(row, row + kLanes, 0.0f);
+  NoiseLattice L;
+  float xs[kLanes], ys[kLanes], zs[kLanes], w[kLanes], cw[kLanes];
+  float wavelength = kCoarsest;
+  for (int k = 0; k < kOctaves; ++k, wavelength *= 0.5f) {
+    float any = 0;
+    for (int i = 0; i < m; ++i) {
+      w[i] = OctaveWeight(wavelength, footprint[i]);
+      any = std::max(any, w[i]);
+    }
+    if (any == 0) break;  // finer octaves fade earlier still
+    const float s = 1.0f / wavelength, off = 17.31f * static_cast<float>(k);
+    for (int i = 0; i < m; ++i) {
+      xs[i] = px[i] * s + off;
+      ys[i] = py[i] * s - off;
+      zs[i] = pz[i] * s + 0.5f * off;
+    }
+    noise_.Locate(xs, ys, zs, m, L);
+    for (int c = 0; c < 4; ++c) {
+      if (kWeights[c][k] == 0) continue;
+      const float cn = kWeights[c][k] * kNorms.n[c];
+      for (int i = 0; i < m; ++i) cw[i] = w[i] * cn;
+      L.Accumulate(c, cw, layer[c], m);
+    }
+  }
+}
+
+void SurfaceAlbedo::Layers(const Eigen::Vector3f& p, float footprint, float (&layer)[4]) const {
+  float batch[4][kLanes];
+  Layers(&p.x(), &p.y(), &p.z(), &footprint, 1, batch);
+  for (int c = 0; c < 4; ++c) layer[c] = batch[c][0];
+}
+
+HI_NOISE_INLINE void SurfaceAlbedo::HullChunk(const float* px, const float* py, const float* pz, const float* nx,
+                                              const float* ny, const float* nz, const float* footprint, int m,
+                                              float* out) const {
+  float layer[4][kLanes];
+  Layers(px, py, pz, footprint, m, layer);
+  NoiseLattice L;
+  float xs[kLanes], ys[kLanes], zs[kLanes], ones[kLanes];
+  std::fill(ones, ones + kLanes, 1.0f);
+
+  // Clean zones (about a fifth of the hull): fresh paint, little texture.
+  float zone[kLanes] = {};
+  for (int i = 0; i < m; ++i) {
+    xs[i] = px[i] / 3.84f;
+    ys[i] = py[i] / 3.84f;
+    zs[i] = pz[i] / 3.84f;
+  }
+  coarse_.Locate(xs, ys, zs, m, L);
+  L.Accumulate(0, ones, zone, m);
+
+  // Hull coordinates: along the hull, and around its girth (across the
+  // bottom, up the sides).
+  float along[kLanes], girth[kLanes];
+  const float fx = f_.x(), fy = f_.y(), fz = f_.z(), ux = u_.x(), uy = u_.y(), uz = u_.z(), qx = q_.x(), qy = q_.y(),
+              qz = q_.z();
+  for (int i = 0; i < m; ++i) {
+    along[i] = px[i] * fx + py[i] * fy + pz[i] * fz;
+    const float up_dot_n = std::abs(nx[i] * ux + ny[i] * uy + nz[i] * uz);
+    const float port = px[i] * qx + py[i] * qy + pz[i] * qz;
+    const float height = px[i] * ux + py[i] * uy + pz[i] * uz;
+    const float bottom = static_cast<float>(up_dot_n > 0.6f);  // 1 on the bottom (and deck), 0 on the sides
+    girth[i] = height + bottom * (port - height);
+  }
+  // Rust streaks along the flow (anisotropic: long along, thin across).
+  float streak[kLanes] = {};
+  for (int i = 0; i < m; ++i) {
+    xs[i] = along[i] / 0.5f;
+    ys[i] = girth[i] / 0.015f;
+    zs[i] = 0.5f;
+  }
+  streaks_.Locate(xs, ys, zs, m, L);
+  L.Accumulate(0, ones, streak, m);
+
+  for (int i = 0; i < m; ++i) {
+    const float z = zone[i];
+    const float clean = Smoothstep(0.14f, 0.26f, z);
+    const float dirty = 1 - clean;
+    // Plates: longitudinal seams every 2 m of girth, butts every 3 m along,
+    // staggered from strake to strake; each plate its own paint tone.
+    const float g = girth[i] / 2.0f + 0.37f;
+    const std::int32_t strake = GradientNoise::Floor(g);
+    const float a = (along[i] + 1.1f * static_cast<float>(strake)) / 3.0f + 0.21f;
+    const std::uint32_t plate =
+        noise_.Hash(static_cast<std::uint32_t>(strake), static_cast<std::uint32_t>(GradientNoise::Floor(a)), 7u);
+    const float plate_tone = static_cast<float>(static_cast<std::int32_t>(plate & 1023u)) / 1023.0f - 0.5f;
+    float rho = 0.34f + 0.16f * layer[kTone][i] + 0.04f * plate_tone;
+    // Biofilm blotches, darker.
+    const float blotch = Smoothstep(0.02f, 0.10f, layer[kBlotch][i]) * dirty;
+    rho = Mix(rho, 0.17f + 0.2f * layer[kTone][i], blotch);
+    // Abraded anti-fouling: spots of the lighter primer.
+    const float wear = Smoothstep(0.30f, 0.38f, layer[kWear][i] + 0.1f * z) * (1 - 0.7f * clean);
+    rho = Mix(rho, 0.6f, wear);
+    // Rust streaks.
+    rho *= 1 - 0.25f * Smoothstep(0.3f, 0.55f, streak[i]) * OctaveWeight(0.015f, footprint[i]) * dirty;
+    // Weld seams: a light bead in a darker heat-affected band, with ripple.
+    const float weld = OctaveWeight(0.012f, footprint[i]);
+    const float d = std::min(DistanceToInteger(g) * 2.0f, DistanceToInteger(a) * 3.0f) + 0.0075f * layer[kGrain][i];
+    const float bead = 1 - Smoothstep(0.004f, 0.007f, d);
+    const float heat = 1 - Smoothstep(0.007f, 0.02f, d);
+    rho = Mix(rho, 0.75f * rho, heat * (1 - bead) * weld);
+    rho = Mix(rho, 0.5f, 0.8f * bead * weld);
+    // Fine grain of the paint and growth.
+    rho *= 1 + (0.15f + 0.25f * dirty) * layer[kGrain][i];
+    out[i] = std::min(std::max(rho, 0.03f), 0.9f);
+  }
+}
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+// Also compiled for AVX2 (8 lanes), chosen at run time where the CPU has it.
+// Without FMA contraction (ISO C++ mode) both give bit-identical results.
+__attribute__((target_clones("avx2", "default")))
+#endif
+void SurfaceAlbedo::HullBatch(const float* px, const float* py, const float* pz, const float* nx, const float* ny,
+                              const float* nz, const float* footprint, int n, float* out) const {
+  for (int base = 0; base < n; base += kLanes) {
+    const int m = std::min(kLanes, n - base);
+    HullChunk(px + base, py + base, pz + base, nx + base, ny + base, nz + base, footprint + base, m, out + base);
+  }
+}
+
+float SurfaceAlbedo::OnHull(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float footprint) const {
+  float out;
+  HullBatch(&p.x(), &p.y(), &p.z(), &n.x(), &n.y(), &n.z(), &footprint, 1, &out);
+  return out;
+}
+
+float SurfaceAlbedo::Fouling(const Eigen::Vector3f& p, float footprint) const {
+  // Barnacle-like shells on a dark weed film: a cellular pattern, one shell
+  // per 16 mm cell at a random spot, radius 4.5-8 mm, a dark opening.
+  constexpr float kCell = 0.016f;
+  float layer[4];
+  Layers(p, footprint, layer);
+  const float film = 0.11f + 0.25f * layer[kTone] + 0.15f * layer[kGrain];
+  const float detail = OctaveWeight(kCell, footprint);
+  if (detail == 0) return std::clamp(film + 0.1f, 0.03f, 0.9f);
+  const Eigen::Vector3f x = p / kCell;
+  const std::int32_t bx = GradientNoise::Floor(x.x()), by = GradientNoise::Floor(x.y()),
+                     bz = GradientNoise::Floor(x.z());
+  float best = 1e9f, radius = 0, tint = 0;
+  for (int dz = -1; dz <= 1; ++dz) {
+    for (int dy = -1; dy <= 1; ++dy) {
+      for (int dx = -1; dx <= 1; ++dx) {
+        const std::uint32_t h = coarse_.Hash(static_cast<std::uint32_t>(bx + dx), static_cast<std::uint32_t>(by + dy),
+                                             static_cast<std::uint32_t>(bz + dz));
+        const Eigen::Vector3f spot =
+            Eigen::Vector3f(float(bx + dx), float(by + dy), float(bz + dz)) +
+            Eigen::Vector3f(float(h & 1023u), float((h >> 10) & 1023u), float((h >> 20) & 1023u)) / 1023.0f;
+        const float d = (x - spot).norm();
+        if (d < best) {
+          best = d;
+          radius = 0.28f + 0.22f * float((h >> 30) & 3u) / 3.0f;
+          tint = float((h >> 27) & 7u) / 7.0f;
+        }
+      }
+    }
+  }
+  float rho = film;
+  if (best < radius) {
+    const float r = best / radius;
+    rho = r < 0.35f ? 0.08f : 0.42f + 0.2f * tint + 0.15f * (1 - r);
+  }
+  return std::clamp(Mix(film + 0.1f, rho, detail), 0.03f, 0.9f);
+}
+
+float SurfaceAlbedo::OnObject(const TrueObject& object, const Eigen::Vector3f& p, const Eigen::Vector3f& n,
+                              float footprint) const {
+  const SurfaceMaterial material = MaterialOf(object.kind);
+  if (material == SurfaceMaterial::kFouling) return Fouling(p, footprint);
+  float layer[4];
+  Layers(p, footprint, layer);
+  const Eigen::Vector3f axis = object.normal.cast<float>().normalized();
+  const Eigen::Vector3f e1 = Perpendicular(axis), e2 = axis.cross(e1);
+  const Eigen::Vector3f r = p - object.center.cast<float>();
+  const float h = r.dot(axis), lx = r.dot(e1), ly = r.dot(e2);
+  const bool top = n.dot(axis) > 0.5f;
+  const float line = OctaveWeight(0.01f, footprint);  // markings fade when unresolved
+  float rho;
+  if (material == SurfaceMaterial::kPaintedSteel) {
+    rho = 0.62f + 0.1f * layer[kTone];
+    if (top) {
+      if (std::min(std::abs(lx), std::abs(ly)) < 0.01f) rho = Mix(rho, 0.08f, line);  // a cross on the cap
+    } else {
+      if (std::abs(h - 0.55f * static_cast<float>(object.Height())) < 0.012f) rho = Mix(rho, 0.08f, line);
+      if (Fract(std::atan2(ly, lx) / (2 * static_cast<float>(M_PI)) * 8) < 0.06f) rho = Mix(rho, 0.12f, line);
+    }
+    rho = Mix(rho, 0.22f, Smoothstep(0.3f, 0.36f, layer[kWear]));  // rust specks
+  } else {
+    rho = 0.42f + 0.1f * layer[kTone];
+    if (top) {
+      rho = Mix(rho, Fract((lx + ly) / 0.05f) < 0.5f ? 0.15f : 0.7f, line);  // hazard stripes
+    } else if (std::abs(h - 0.5f * static_cast<float>(object.Height())) < 0.006f) {
+      rho = Mix(rho, 0.12f, line);
+    }
+  }
+  rho *= 1 + 0.5f * layer[kGrain];
+  return std::clamp(rho, 0.03f, 0.9f);
+}
+
+}  // namespace hull
