@@ -22,30 +22,7 @@ namespace fs = std::filesystem;
 using testing::MakeVisionScene;
 using testing::ScratchDir;
 using testing::VisionScene;
-
-// Writes the scene as a version 2 bundle without features.csv; keyframe
-// `drop_bottom` (an index) loses its bottom image (a dropped frame).
-void WriteSceneBundle(const VisionScene& s, const std::string& dir, int drop_bottom = -1) {
-  SurveyBundle b;
-  b.manifest = s.manifest;
-  b.manifest.name = "vision";
-  b.nav = s.nav;
-  for (std::size_t k = 0; k < s.nav.size(); ++k) {
-    DvlRecord d;
-    d.keyframe = s.nav[k].keyframe;
-    d.range = {1.5, 1.6, 1.7, 1.8};
-    b.dvl.push_back(d);
-    if (k > 0) b.odometry.push_back({s.nav[k - 1].keyframe, s.nav[k].keyframe, Vector6d::Zero()});
-  }
-  b.images = SurveyImages{};
-  WriteSurveyBundle(b, dir);
-  fs::create_directories(fs::path(dir) / "images");
-  for (std::size_t k = 0; k < s.nav.size(); ++k) {
-    WriteImageFile(dir + "/images/" + SurveyImageName(s.nav[k].keyframe, false), s.Render(k));
-    if (s.manifest.camera.stereo() && static_cast<int>(k) != drop_bottom)
-      WriteImageFile(dir + "/images/" + SurveyImageName(s.nav[k].keyframe, true), s.Render(k, true));
-  }
-}
+using testing::WriteSceneBundle;
 
 // Checks the tracks against the truth: no keyframe twice in a track, every
 // track in >= 2 keyframes, and the share of observations whose true surface

@@ -4,11 +4,15 @@
 #pragma once
 
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <vector>
 
+#include "image/image_file.h"
 #include "support/test_scenes.h"
 #include "survey/survey.h"
+#include "survey/survey_images.h"
+#include "survey/survey_io.h"
 #include "vision/camera_geometry.h"
 
 namespace hull::testing {
@@ -80,6 +84,30 @@ inline VisionScene MakeVisionScene(bool stereo, bool cylinder, int keyframes, do
     s.surface.axis_v = c0.rotation().col(1);
   }
   return s;
+}
+
+// Writes the scene as a version 2 bundle without features.csv; keyframe
+// `drop_bottom` (an index) loses its bottom image (a dropped frame).
+inline void WriteSceneBundle(const VisionScene& s, const std::string& dir, int drop_bottom = -1) {
+  SurveyBundle b;
+  b.manifest = s.manifest;
+  b.manifest.name = "vision";
+  b.nav = s.nav;
+  for (std::size_t k = 0; k < s.nav.size(); ++k) {
+    DvlRecord d;
+    d.keyframe = s.nav[k].keyframe;
+    d.range = {1.5, 1.6, 1.7, 1.8};
+    b.dvl.push_back(d);
+    if (k > 0) b.odometry.push_back({s.nav[k - 1].keyframe, s.nav[k].keyframe, Vector6d::Zero()});
+  }
+  b.images = SurveyImages{};
+  WriteSurveyBundle(b, dir);
+  std::filesystem::create_directories(std::filesystem::path(dir) / "images");
+  for (std::size_t k = 0; k < s.nav.size(); ++k) {
+    WriteImageFile(dir + "/images/" + SurveyImageName(s.nav[k].keyframe, false), s.Render(k));
+    if (s.manifest.camera.stereo() && static_cast<int>(k) != drop_bottom)
+      WriteImageFile(dir + "/images/" + SurveyImageName(s.nav[k].keyframe, true), s.Render(k, true));
+  }
 }
 
 }  // namespace hull::testing
