@@ -10,8 +10,11 @@
 #include <set>
 
 #include "base/error.h"
+#include "geometry/mesh_io.h"
 #include "image/image_file.h"
+#include "pipeline/pipeline.h"
 #include "support/test_files.h"
+#include "support/test_meshes.h"
 #include "survey/survey_images.h"
 #include "survey/survey_io.h"
 #include "unit/vision/vision_scene.h"
@@ -136,6 +139,34 @@ TEST(FrontEnd, RefusesBundlesWithoutImagesAndStopsOnCancel) {
   FrontEndOptions o;
   o.temporal.ratio = 0;
   EXPECT_THROW(RunFrontEnd(b, o, progress), OptionError);
+}
+
+}  // namespace
+}  // namespace hull
+
+namespace hull {
+namespace {
+using testing::MakeVisionScene;
+using testing::ScratchDir;
+using testing::VisionScene;
+using testing::WriteSceneBundle;
+
+TEST(FrontEnd, PipelineInputsFromImagesWhenThereIsNoFeaturesCsv) {
+  const VisionScene s = MakeVisionScene(false, true, 3);
+  const ScratchDir dir("vision_pipeline");
+  WriteSceneBundle(s, dir.path());
+  const std::string mesh = dir / "hull.ply";
+  SaveMesh(test::MakeBox({-1, -1, -1}, {1, 1, 1}), mesh);
+  CallbackProgress progress;
+  const PipelineInputs in = LoadPipelineInputs(dir.path(), mesh, 1.0, &progress);
+  ASSERT_TRUE(in.front_end);
+  EXPECT_GT(in.front_end->landmarks, 100);
+  EXPECT_EQ(in.bundle.features.size(), in.front_end->features.size());
+  // With a features.csv the bundle's own observations are used.
+  WriteFrontEndResult(*in.front_end, in.bundle.manifest, dir / "features.csv");
+  const PipelineInputs again = LoadPipelineInputs(dir.path(), mesh);
+  EXPECT_FALSE(again.front_end);
+  EXPECT_EQ(again.bundle.features.size(), in.bundle.features.size());
 }
 
 }  // namespace
