@@ -66,8 +66,16 @@ int RunPipeline(const CommandArgs& argv) {
   o.mapping.dbscan_eps = a.GetDouble("eps", o.mapping.dbscan_eps);
   o.mapping.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.mapping.dbscan_min_points));
   o.Check();
-  const PipelineInputs in = LoadPipelineInputs(bundle_dir, a.Get("mesh", ""), a.GetDouble("mesh-scale", 1.0));
-  SubProgress p(progress, a.Has("demo") ? 0.05 : 0.0, 1.0);
+  const double start = a.Has("demo") ? 0.05 : 0.0;
+  // A version 2 bundle without features.csv: the visual front end first.
+  SubProgress pf(progress, start, start + 0.2);
+  const PipelineInputs in =
+      LoadPipelineInputs(bundle_dir, a.Get("mesh", ""), a.GetDouble("mesh-scale", 1.0), &pf, FrontEndOptions{});
+  if (in.front_end) {
+    std::printf("\nfront end: %d landmarks, %zu observations from the images (%.1f s)\n", in.front_end->landmarks,
+                in.front_end->features.size(), in.front_end->seconds);
+  }
+  SubProgress p(progress, in.front_end ? start + 0.2 : start, 1.0);
   const PipelineResult r = hull::RunPipeline(in, o, p);
   WritePipelineResult(in, r, out);
   progress.Finish();

@@ -18,6 +18,7 @@ int RunMap(const CommandArgs& args);       // cmd_map.cc      (shapes, fusion, a
 int RunPipeline(const CommandArgs& args);  // cmd_run.cc      (align -> adjust -> map: the headless main job)
 int RunSonar(const CommandArgs& args);     // cmd_sonar.cc    (imaging-sonar EKF)
 int RunExport(const CommandArgs& args);    // cmd_export.cc   (the remeshed model in other formats)
+int RunFeatures(const CommandArgs& args);  // cmd_features.cc (visual front end: images -> features.csv)
 int RunPlugins(const CommandArgs& args);   // cmd_plugins.cc  (what loaded, what was refused)
 
 }  // namespace hull::cli

@@ -23,6 +23,7 @@ const Command kCommands[] = {
     {"simulate", hull::cli::RunSimulate, "write a simulated survey bundle or acoustic sequence with truth"},
     {"validate", hull::cli::RunValidate, "check a survey bundle or acoustic sequence against the contract"},
     {"info", hull::cli::RunInfo, "summarise a survey bundle, acoustic sequence or mesh"},
+    {"features", hull::cli::RunFeatures, "visual front end: features.csv from a version 2 bundle's images"},
     {"align", hull::cli::RunAlign, "initial model pose: align DVL returns to the mesh (GICP)"},
     {"run", hull::cli::RunPipeline, "the whole pipeline without a display (alignment, adjustment, mapping)"},
     {"adjust", hull::cli::RunAdjust, "model-assisted bundle adjustment (naive, all-on-surface, max-mixture)"},

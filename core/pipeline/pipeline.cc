@@ -13,10 +13,14 @@
 namespace hull {
 namespace fs = std::filesystem;
 
-PipelineInputs LoadPipelineInputs(const std::string& bundle_dir, const std::string& mesh_path, double mesh_scale) {
+PipelineInputs LoadPipelineInputs(const std::string& bundle_dir, const std::string& mesh_path, double mesh_scale,
+                                  Progress* progress, const FrontEndOptions& front_end) {
   PipelineInputs in;
   in.bundle = OpenSurveyBundle(bundle_dir);  // a bundle folder, or a survey a plugin converts
   in.bundle_path = fs::absolute(in.bundle.directory).string();
+  NullProgress quiet;
+  FrontEndResult fe;
+  if (ExtractFeaturesIfNeeded(in.bundle, front_end, progress ? *progress : quiet, &fe)) in.front_end = std::move(fe);
   const std::string mesh = mesh_path.empty() ? in.bundle.ModelHintPath() : mesh_path;
   if (mesh.empty()) {
     throw InputError({(fs::path(bundle_dir) / "survey.json").string(), 0, 0, "model_hint"},
@@ -104,6 +108,9 @@ Json PoseJson(const Pose& p) {
 
 void WritePipelineResult(const PipelineInputs& in, const PipelineResult& r, const std::string& dir) {
   fs::create_directories(dir);
+  if (in.front_end) {
+    WriteFrontEndResult(*in.front_end, in.bundle.manifest, (fs::path(dir) / "features" / "features.csv").string());
+  }
   {
     Json j = Json::Object();
     j.Set("format", "hull-alignment");

@@ -17,6 +17,8 @@
 #include "mapping/mapping_result.h"
 #include "registration/model_alignment.h"
 #include "survey/survey.h"
+#include "vision/front_end.h"
+#include "vision/vision_options.h"
 
 namespace hull {
 
@@ -26,12 +28,19 @@ struct PipelineInputs {
   std::string bundle_path;  // absolute
   std::string mesh_path;    // absolute
   double mesh_scale = 1.0;
+  // Set when the bundle's observations came from its images (a version 2
+  // bundle without features.csv): what the visual front end found.
+  std::optional<FrontEndResult> front_end;
 };
 
 // Reads the bundle and its mesh (mesh_path empty: the bundle's model_hint).
-// Throws InputError naming the file at fault.
+// A version 2 bundle with images and no features.csv gets its feature
+// observations from the visual front end (vision/front_end.h, `front_end`
+// options; progress reported to `progress` when given). Throws InputError
+// naming the file at fault.
 PipelineInputs LoadPipelineInputs(const std::string& bundle_dir, const std::string& mesh_path = "",
-                                  double mesh_scale = 1.0);
+                                  double mesh_scale = 1.0, Progress* progress = nullptr,
+                                  const FrontEndOptions& front_end = {});
 
 struct PipelineOptions {
   // GICP of the DVL returns to the mesh, from the bundle's model_pose_guess
@@ -66,7 +75,8 @@ MappingResult RunMappingStep(const PipelineInputs& in, const AdjustmentResult& a
 // All steps.
 PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& options, Progress& progress);
 
-// Writes DIR/alignment.json, DIR/adjustment/ (and DIR/adjustment-<model>/
+// Writes DIR/features/ (features.csv and match-graph.csv, when the front end
+// ran), DIR/alignment.json, DIR/adjustment/ (and DIR/adjustment-<model>/
 // for the baselines), DIR/mapping/ (remeshed model PLY/OBJ/STL, objects and
 // zones CSV/JSON), DIR/evaluation.txt with truth, and DIR/summary.json.
 void WritePipelineResult(const PipelineInputs& in, const PipelineResult& result, const std::string& dir);

@@ -756,6 +756,23 @@ std::vector<Problem> ValidateSurveyBundle(const std::string& dir) {
 // Writing
 // ---------------------------------------------------------------------------
 
+std::string FeaturesCsvText(const std::vector<FeatureObservation>& features, bool stereo) {
+  std::vector<std::string> head = {"keyframe", "landmark", "u_top", "v_top", "u_bottom", "v_bottom"};
+  if (!stereo) head.resize(4);
+  CsvWriter w(head);
+  for (const auto& f : features) {
+    w.Add(f.keyframe).Add(f.landmark).Add(f.top.x()).Add(f.top.y());
+    if (stereo) {
+      if (f.has_bottom)
+        w.Add(f.bottom.x()).Add(f.bottom.y());
+      else
+        w.AddEmpty().AddEmpty();
+    }
+    w.EndRow();
+  }
+  return w.Take();
+}
+
 void WriteSurveyBundle(const SurveyBundle& b, const std::string& dir) {
   fs::create_directories(dir);
   WriteFileAtomic(Rel(dir, "survey.json"), ManifestJson(b.manifest).Dump());
@@ -795,21 +812,7 @@ void WriteSurveyBundle(const SurveyBundle& b, const std::string& dir) {
   // A version 2 bundle with images may have no features.csv (images/ itself
   // is written by whoever has the pixels, e.g. the simulator's renderer).
   if (!(b.manifest.version >= 2 && b.images && b.features.empty())) {
-    const bool stereo = b.manifest.camera.stereo();
-    std::vector<std::string> head = {"keyframe", "landmark", "u_top", "v_top", "u_bottom", "v_bottom"};
-    if (!stereo) head.resize(4);
-    CsvWriter w(head);
-    for (const auto& f : b.features) {
-      w.Add(f.keyframe).Add(f.landmark).Add(f.top.x()).Add(f.top.y());
-      if (stereo) {
-        if (f.has_bottom)
-          w.Add(f.bottom.x()).Add(f.bottom.y());
-        else
-          w.AddEmpty().AddEmpty();
-      }
-      w.EndRow();
-    }
-    WriteFileAtomic(Rel(dir, "features.csv"), w.text());
+    WriteFileAtomic(Rel(dir, "features.csv"), FeaturesCsvText(b.features, b.manifest.camera.stereo()));
   }
   if (b.landmarks) {
     CsvWriter w({"landmark", "x", "y", "z"});

@@ -26,6 +26,10 @@ SurveyBundle ReadSurveyBundleCollecting(const std::string& dir, std::vector<Prob
 // written here; the caller places it (see SaveMesh).
 void WriteSurveyBundle(const SurveyBundle& bundle, const std::string& dir);
 
+// The text of features.csv for these observations (without the bottom
+// columns for a monocular survey).
+std::string FeaturesCsvText(const std::vector<FeatureObservation>& features, bool stereo);
+
 // Parses survey.json text alone (used by tests and the GUI's bundle preview).
 SurveyManifest ParseSurveyManifest(const std::string& text, const std::string& file);
 std::string SurveyManifestToJson(const SurveyManifest& manifest);

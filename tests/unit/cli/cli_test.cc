@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "support/test_files.h"
+#include "unit/vision/vision_scene.h"
 
 namespace {
 
@@ -40,8 +41,8 @@ CliRun Cli(const std::vector<std::string>& args) {
   return r;
 }
 
-const std::vector<std::string> kCommands = {"simulate", "validate", "info",  "align",  "run",
-                                            "adjust",   "map",      "sonar", "export", "plugins"};
+const std::vector<std::string> kCommands = {"simulate", "validate", "info",   "align",   "run",     "adjust",
+                                            "map",      "sonar",    "export", "plugins", "features"};
 
 TEST(Cli, EveryCommandHasHelp) {
   for (const std::string& c : kCommands) {
@@ -203,6 +204,30 @@ TEST(Cli, SimulateCameraImages) {
   r = Cli({"simulate", "--preset", "demo", "--attenuation", "0.5", "--out", tmp / "x"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--attenuation needs --images"), std::string::npos) << r.output;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(Cli, FeaturesFromImagesThenValidate) {
+  const hull::testing::VisionScene s = hull::testing::MakeVisionScene(false, true, 3);
+  const hull::testing::ScratchDir dir("cli_features");
+  hull::testing::WriteSceneBundle(s, dir.path());
+  CliRun r = Cli({"features", dir.path(), "--quiet", "--threads", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("mean inlier ratio"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("landmarks"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "features.csv"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "match-graph.csv"));
+  r = Cli({"validate", dir.path()});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = Cli({"features", dir.path(), "--quiet"});  // would overwrite
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--force"), std::string::npos) << r.output;
+  r = Cli({"features", dir.path(), "--ratio", "2", "--out", dir / "other.csv"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("ratio"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -1,0 +1,103 @@
+// hullinspect-cli features: the visual front end, images -> features.csv.
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "cli/console_progress.h"
+#include "survey/survey_io.h"
+#include "vision/front_end.h"
+
+namespace hull::cli {
+namespace {
+
+const char* kHelp = R"(usage: hullinspect-cli features BUNDLE [--out FILE] [options]
+
+The visual front end on a version 2 bundle's images (images/): SIFT with
+CLAHE, top-bottom matches under the rig's epipolar constraint, matches
+between keyframes guided by the navigation (RANSAC: rigid alignment of the
+stereo clouds, or the 5-point essential matrix for mono), tracks with global
+landmark ids. Writes FILE (default BUNDLE/features.csv, the version 1
+contract, which 'run' and 'adjust' then use) and match-graph.csv beside it.
+Prints per-keyframe feature counts and per-pair inlier ratios.
+
+options:
+  --out FILE              where to write features.csv
+  --force                 overwrite an existing features.csv
+  --max-features N        SIFT features per image (default 2000, 0: all)
+  --no-clahe              no contrast normalisation before SIFT
+  --clahe-clip C          CLAHE clip limit (default 3)
+  --epipolar-tolerance PX stereo: distance to the epipolar line (default 2)
+  --ratio R               Lowe's ratio, stereo and temporal (default 0.8)
+  --window PX             temporal search radius around the prediction (default 40)
+  --neighbours N          match each keyframe with the next N (default 2)
+  --ransac-threshold PX   RANSAC inlier threshold (default 2)
+  --min-keyframes N       shortest track kept (default 2)
+  --threads N             worker threads (default: all cores)
+  --quiet
+)";
+
+}  // namespace
+
+int RunFeatures(const CommandArgs& argv) {
+  Args a(argv, {"force", "no-clahe", "quiet"});
+  if (a.Has("help")) {
+    std::fputs(kHelp, stdout);
+    return kExitOk;
+  }
+  a.AllowOnly({"out", "force", "max-features", "no-clahe", "clahe-clip", "epipolar-tolerance", "ratio", "window",
+               "neighbours", "ransac-threshold", "min-keyframes", "threads", "quiet"});
+  if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
+  const std::string bundle_dir = a.positionals()[0];
+  FrontEndOptions o;
+  o.detection.max_features = static_cast<int>(a.GetInt("max-features", o.detection.max_features));
+  o.detection.clahe = !a.Has("no-clahe");
+  o.detection.clahe_clip = a.GetDouble("clahe-clip", o.detection.clahe_clip);
+  o.stereo.epipolar_tolerance = a.GetDouble("epipolar-tolerance", o.stereo.epipolar_tolerance);
+  o.stereo.ratio = o.temporal.ratio = a.GetDouble("ratio", o.stereo.ratio);
+  o.temporal.window = a.GetDouble("window", o.temporal.window);
+  o.temporal.neighbours = static_cast<int>(a.GetInt("neighbours", o.temporal.neighbours));
+  o.temporal.ransac_threshold = a.GetDouble("ransac-threshold", o.temporal.ransac_threshold);
+  o.tracks.min_keyframes = static_cast<int>(a.GetInt("min-keyframes", o.tracks.min_keyframes));
+  o.threads = static_cast<int>(a.GetInt("threads", 0));
+  o.Check();
+  const std::string out = a.Get("out", (std::filesystem::path(bundle_dir) / "features.csv").string());
+  if (std::filesystem::exists(out) && !a.Has("force"))
+    throw UsageError(out + " exists; give --out FILE or --force to overwrite it");
+
+  const SurveyBundle bundle = ReadSurveyBundle(bundle_dir);
+  ConsoleProgress progress(a.Has("quiet"));
+  const FrontEndResult r = RunFrontEnd(bundle, o, progress);
+  WriteFrontEndResult(r, bundle.manifest, out);
+  progress.Finish();
+
+  std::printf("%-10s %6s %8s %8s %7s %7s\n", "keyframe", "images", "top", "bottom", "stereo", "tracked");
+  for (const auto& k : r.keyframes) {
+    std::printf("%-10lld %6d %8d %8d %7d %7d\n", static_cast<long long>(k.keyframe),
+                static_cast<int>(k.has_top) + static_cast<int>(k.has_bottom), k.top_features, k.bottom_features,
+                k.stereo_matches, k.tracked);
+  }
+  int accepted = 0;
+  double ratio_sum = 0;
+  for (const auto& p : r.pairs) {
+    if (p.accepted) {
+      ++accepted;
+      ratio_sum += p.InlierRatio();
+    }
+  }
+  std::printf("keyframe pairs: %zu matched, %d accepted, mean inlier ratio %.3f\n", r.pairs.size(), accepted,
+              accepted ? ratio_sum / accepted : 0.0);
+  for (const auto& p : r.pairs) {
+    if (!p.accepted) {
+      std::printf("  dropped %lld-%lld (%s): %d putative, %d inliers, %s\n", static_cast<long long>(p.from),
+                  static_cast<long long>(p.to), p.stereo ? "rigid" : "essential", p.putative, p.inliers,
+                  p.note.c_str());
+    }
+  }
+  std::printf("%d landmarks, %zu observations; %d merges refused, %d short tracks dropped; %.1f s\n", r.landmarks,
+              r.features.size(), r.refused_merges, r.dropped_tracks, r.seconds);
+  std::printf("wrote %s\n", out.c_str());
+  return kExitOk;
+}
+
+}  // namespace hull::cli

@@ -1,0 +1,202 @@
+#include "vision/front_end.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <mutex>
+#include <tuple>
+
+#include "base/csv.h"
+#include "base/error.h"
+#include "base/file_io.h"
+#include "survey/survey_images.h"
+#include "survey/survey_io.h"
+#include "vision/camera_geometry.h"
+#include "vision/feature_detection.h"
+#include "vision/feature_tracks.h"
+#include "vision/stereo_matching.h"
+#include "vision/temporal_matching.h"
+
+namespace hull {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Progress from worker threads: one update at a time, never going back.
+class SharedProgress {
+ public:
+  SharedProgress(Progress& p, double begin, double end, int total) : p_(p), begin_(begin), end_(end), total_(total) {}
+  void Step(const std::string& message) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++done_;
+    p_.Update(begin_ + (end_ - begin_) * done_ / std::max(1, total_), message);
+  }
+  void ThrowIfCancelled() const { p_.ThrowIfCancelled(); }
+
+ private:
+  Progress& p_;
+  double begin_, end_;
+  int total_;
+  int done_ = 0;
+  std::mutex mutex_;
+};
+
+struct Link {
+  float distance;
+  int ka, fa, kb, fb;
+};
+
+}  // namespace
+
+FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o, Progress& progress) {
+  o.Check();
+  const auto t0 = std::chrono::steady_clock::now();
+  const SurveyManifest& man = bundle.manifest;
+  const CameraRig& rig = man.camera;
+  if (!bundle.images || bundle.images->present() == 0) {
+    throw InputError({(fs::path(bundle.directory) / "images").string(), 0, 0, ""},
+                     "the bundle has no camera images to extract features from");
+  }
+  const SurveyImages& images = *bundle.images;
+  const std::size_t n = bundle.nav.size();
+  FrontEndResult r;
+  r.keyframes.resize(n);
+  std::vector<KeyframeView> views(n);
+  tbb::task_arena arena(o.threads > 0 ? o.threads : tbb::task_arena::automatic);
+
+  // 1. Features and stereo matches per keyframe.
+  SharedProgress detect_progress(progress, 0.0, 0.6, static_cast<int>(n));
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, n, [&](std::size_t i) {
+      detect_progress.ThrowIfCancelled();
+      const NavRecord& nav = bundle.nav[i];
+      FrontEndKeyframe& k = r.keyframes[i];
+      KeyframeView& v = views[i];
+      k.keyframe = v.keyframe = nav.keyframe;
+      v.x_g_cT = CameraPoseFromNav(man, nav);
+      const KeyframeImages* img = i < images.frames.size() ? &images.frames[i] : nullptr;
+      if (img && !img->top.empty()) {
+        k.has_top = true;
+        v.top = DetectFeatures(ReadSurveyImage(bundle, nav.keyframe, false), o.detection);
+        k.top_features = static_cast<int>(v.top.size());
+        if (rig.stereo() && !img->bottom.empty()) {
+          k.has_bottom = true;
+          const ImageFeatures bottom = DetectFeatures(ReadSurveyImage(bundle, nav.keyframe, true), o.detection);
+          k.bottom_features = static_cast<int>(bottom.size());
+          v.stereo = MatchStereo(v.top, bottom, rig, o.stereo);
+          k.stereo_matches = static_cast<int>(v.stereo.size());
+        }
+      }
+      detect_progress.Step("features of keyframe " + std::to_string(nav.keyframe));
+    });
+  });
+
+  // 2. Temporal matches: each keyframe with its next `neighbours` keyframes
+  // that have a top image, in nav order.
+  std::vector<std::size_t> with_image;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (r.keyframes[i].has_top) with_image.push_back(i);
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t a = 0; a < with_image.size(); ++a) {
+    for (std::size_t b = a + 1; b < with_image.size() && b <= a + static_cast<std::size_t>(o.temporal.neighbours); ++b)
+      pairs.emplace_back(with_image[a], with_image[b]);
+  }
+  std::vector<PairMatches> matches(pairs.size());
+  SharedProgress match_progress(progress, 0.6, 0.95, static_cast<int>(pairs.size()));
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t p) {
+      match_progress.ThrowIfCancelled();
+      matches[p] = MatchKeyframes(views[pairs[p].first], views[pairs[p].second], rig, o.temporal);
+      match_progress.Step("matching keyframes " + std::to_string(views[pairs[p].first].keyframe) + " and " +
+                          std::to_string(views[pairs[p].second].keyframe));
+    });
+  });
+
+  // 3. Tracks: links of accepted pairs, best (smallest descriptor distance) first.
+  progress.Update(0.95, "building tracks");
+  std::vector<Link> links;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const PairMatches& m = matches[p];
+    FrontEndPair fp;
+    fp.from = views[pairs[p].first].keyframe;
+    fp.to = views[pairs[p].second].keyframe;
+    fp.stereo = m.stereo;
+    fp.putative = m.putative;
+    fp.inliers = m.inliers;
+    fp.accepted = m.accepted;
+    fp.note = m.note;
+    r.pairs.push_back(fp);
+    if (!m.accepted) continue;
+    for (const auto& t : m.matches)
+      links.push_back({t.distance, static_cast<int>(pairs[p].first), t.a, static_cast<int>(pairs[p].second), t.b});
+  }
+  std::stable_sort(links.begin(), links.end(), [](const Link& a, const Link& b) { return a.distance < b.distance; });
+  std::vector<int> counts(n);
+  for (std::size_t i = 0; i < n; ++i) counts[i] = static_cast<int>(views[i].top.size());
+  TrackBuilder builder(counts);
+  for (const Link& l : links) builder.Link(l.ka, l.fa, l.kb, l.fb);
+  r.refused_merges = builder.refused();
+  const auto tracks = builder.Tracks(o.tracks.min_keyframes, &r.dropped_tracks);
+
+  // 4. Observations with global landmark ids (track order).
+  std::vector<std::vector<int>> bottom_of(n);  // top feature -> bottom feature (-1: none)
+  for (std::size_t i = 0; i < n; ++i) {
+    bottom_of[i].assign(views[i].top.size(), -1);
+    for (std::size_t s = 0; s < views[i].stereo.size(); ++s)
+      bottom_of[i][static_cast<std::size_t>(views[i].stereo[s].top)] = static_cast<int>(s);
+  }
+  std::vector<std::tuple<int, std::int64_t, FeatureObservation>> rows;
+  for (std::size_t t = 0; t < tracks.size(); ++t) {
+    for (const auto& [k, f] : tracks[t]) {
+      const std::size_t ki = static_cast<std::size_t>(k);
+      FeatureObservation obs;
+      obs.keyframe = views[ki].keyframe;
+      obs.landmark = static_cast<std::int64_t>(t);
+      obs.top = views[ki].top.points[static_cast<std::size_t>(f)];
+      const int s = bottom_of[ki][static_cast<std::size_t>(f)];
+      if (s >= 0) {
+        obs.has_bottom = true;
+        obs.bottom = views[ki].stereo[static_cast<std::size_t>(s)].bottom_uv;
+      }
+      rows.emplace_back(k, obs.landmark, obs);
+      ++r.keyframes[ki].tracked;
+    }
+  }
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
+    return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));
+  });
+  r.features.reserve(rows.size());
+  for (auto& row : rows) r.features.push_back(std::get<2>(row));
+  r.landmarks = static_cast<int>(tracks.size());
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  progress.Update(1.0, "front end done");
+  return r;
+}
+
+void WriteFrontEndResult(const FrontEndResult& r, const SurveyManifest& manifest, const std::string& features_csv) {
+  const fs::path path(features_csv);
+  if (path.has_parent_path()) fs::create_directories(path.parent_path());
+  WriteFileAtomic(features_csv, FeaturesCsvText(r.features, manifest.camera.stereo()));
+  CsvWriter w({"from", "to", "method", "putative", "inliers", "accepted", "note"});
+  for (const auto& p : r.pairs) {
+    w.Add(p.from).Add(p.to).Add(p.stereo ? "rigid" : "essential").Add(p.putative).Add(p.inliers);
+    w.Add(p.accepted ? "1" : "0").Add(p.note);
+    w.EndRow();
+  }
+  WriteFileAtomic((path.parent_path() / "match-graph.csv").string(), w.text());
+}
+
+bool ExtractFeaturesIfNeeded(SurveyBundle& bundle, const FrontEndOptions& options, Progress& progress,
+                             FrontEndResult* result) {
+  if (!bundle.features.empty() || !bundle.images || bundle.images->present() == 0) return false;
+  FrontEndResult r = RunFrontEnd(bundle, options, progress);
+  bundle.features = r.features;
+  if (result) *result = std::move(r);
+  return true;
+}
+
+}  // namespace hull

@@ -1,0 +1,62 @@
+#include "vision/vision_options.h"
+
+#include <cmath>
+#include <string>
+
+#include "base/error.h"
+
+namespace hull {
+namespace {
+
+void Require(bool ok, const char* field, const std::string& why) {
+  if (!ok) throw OptionError(field, why);
+}
+
+bool Positive(double v) { return std::isfinite(v) && v > 0; }
+
+}  // namespace
+
+void DetectionOptions::Check() const {
+  Require(max_features >= 0 && max_features <= 100000, "max_features", "must be between 0 (all) and 100000");
+  Require(Positive(contrast_threshold) && contrast_threshold < 1, "contrast_threshold", "must be in (0, 1)");
+  Require(Positive(edge_threshold), "edge_threshold", "must be positive");
+  Require(Positive(clahe_clip), "clahe_clip", "must be positive");
+  Require(clahe_tiles >= 1 && clahe_tiles <= 64, "clahe_tiles", "must be between 1 and 64");
+}
+
+void StereoOptions::Check() const {
+  Require(Positive(epipolar_tolerance), "epipolar_tolerance", "must be positive (px)");
+  Require(Positive(ratio) && ratio <= 1, "ratio", "must be in (0, 1]");
+  Require(Positive(min_depth), "min_depth", "must be positive (m)");
+  Require(Positive(max_depth) && max_depth > min_depth, "max_depth", "must be greater than min_depth (m)");
+}
+
+void TemporalOptions::Check() const {
+  Require(neighbours >= 1 && neighbours <= 50, "neighbours", "must be between 1 and 50");
+  Require(Positive(window), "window", "must be positive (px)");
+  Require(Positive(ratio) && ratio <= 1, "ratio", "must be in (0, 1]");
+  Require(Positive(mono_min_depth), "mono_min_depth", "must be positive (m)");
+  Require(Positive(mono_max_depth) && mono_max_depth > mono_min_depth, "mono_max_depth",
+          "must be greater than mono_min_depth (m)");
+  Require(Positive(ransac_threshold), "ransac_threshold", "must be positive (px)");
+  Require(Positive(ransac_confidence) && ransac_confidence < 1, "ransac_confidence", "must be in (0, 1)");
+  Require(ransac_max_iterations >= 1, "ransac_max_iterations", "must be at least 1");
+  Require(min_inliers >= 5, "min_inliers", "must be at least 5 (the essential matrix needs 5)");
+  Require(Positive(max_rotation_error_deg) && max_rotation_error_deg <= 180, "max_rotation_error_deg",
+          "must be in (0, 180] degrees");
+  Require(Positive(max_direction_error_deg) && max_direction_error_deg <= 180, "max_direction_error_deg",
+          "must be in (0, 180] degrees");
+  Require(Positive(max_translation_error), "max_translation_error", "must be positive (m)");
+}
+
+void TrackOptions::Check() const { Require(min_keyframes >= 2, "min_keyframes", "must be at least 2"); }
+
+void FrontEndOptions::Check() const {
+  detection.Check();
+  stereo.Check();
+  temporal.Check();
+  tracks.Check();
+  Require(threads >= 0, "threads", "must be >= 0 (0: all cores)");
+}
+
+}  // namespace hull

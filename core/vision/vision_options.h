@@ -1,0 +1,60 @@
+// Options of the visual front end (Ozog et al., section 3): one struct per
+// stage with defaults, a comment per field and Check() (throws OptionError
+// naming the field). The same structs feed the CLI flags and the GUI panel.
+#pragma once
+
+namespace hull {
+
+// SIFT on each image after contrast normalisation.
+struct DetectionOptions {
+  int max_features = 2000;           // SIFT keeps the strongest this many per image (0: all)
+  double contrast_threshold = 0.03;  // SIFT contrast threshold (OpenCV's, per octave layer set)
+  double edge_threshold = 10;        // SIFT edge-response threshold
+  bool clahe = true;                 // CLAHE before SIFT (uneven strobe lighting)
+  double clahe_clip = 3.0;           // CLAHE clip limit (contrast amplification cap)
+  int clahe_tiles = 8;               // CLAHE grid: tiles x tiles regions
+  void Check() const;
+};
+
+// Top <-> bottom matching under the calibrated rig's epipolar constraint.
+struct StereoOptions {
+  double epipolar_tolerance = 2.0;  // px: max distance of a bottom feature to the top feature's epipolar line
+  double ratio = 0.8;               // Lowe's ratio: best / second-best descriptor distance among candidates
+  double min_depth = 0.2;           // m: nearer triangulated points are refused
+  double max_depth = 10.0;          // m: farther ones too (also bounds the search along the line)
+  void Check() const;
+};
+
+// Keyframe <-> keyframe matching guided by the navigation prior, then RANSAC.
+struct TemporalOptions {
+  int neighbours = 2;                   // match each keyframe with this many following keyframes (nav order)
+  double window = 40.0;                 // px: search radius around the predicted position (nav error)
+  double ratio = 0.8;                   // Lowe's ratio among the candidates in the window
+  double mono_min_depth = 0.3;          // m: mono search segment along the epipolar line starts here ...
+  double mono_max_depth = 6.0;          // m: ... and ends here
+  double ransac_threshold = 2.0;        // px: inlier reprojection error (stereo) / Sampson distance (mono)
+  double ransac_confidence = 0.999;     // RANSAC success probability
+  int ransac_max_iterations = 2000;     // RANSAC iterations at most (stereo)
+  int min_inliers = 12;                 // a pair with fewer inliers is dropped
+  double max_rotation_error_deg = 5;    // RANSAC motion vs the nav prior: rotation difference at most this
+  double max_direction_error_deg = 25;  // mono: translation direction difference at most this
+  double max_translation_error = 0.3;   // m, stereo: translation difference at most this
+  void Check() const;
+};
+
+// Tracks across keyframes.
+struct TrackOptions {
+  int min_keyframes = 2;  // tracks seen in fewer keyframes are dropped
+  void Check() const;
+};
+
+struct FrontEndOptions {
+  DetectionOptions detection;
+  StereoOptions stereo;
+  TemporalOptions temporal;
+  TrackOptions tracks;
+  int threads = 0;  // worker threads for detection and matching (0: all cores)
+  void Check() const;
+};
+
+}  // namespace hull
