@@ -144,17 +144,19 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   t = Clock::now();
   progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
   SubProgress fusion_progress(progress, 0.5, 0.8);
-  const FusionResult fused = FuseShapes(prior, *refined->tree, x_M_cT, shapes, o.fusion_radius, fusion_progress);
+  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band};
+  const FusionResult fused = FuseShapes(prior, *refined->tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
   s.seconds.fusion = Since(t);
 
-  // Each fused vertex's signed deviation from the CAD surface.
+  // Every vertex's signed distance to the CAD surface (fused or not: a
+  // vertex no shape touched lies on the CAD, within rounding).
   t = Clock::now();
   progress.Update(0.8, "measuring the fused model's deviation from the CAD");
   std::vector<double> deviation(prior.num_vertices(), 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, prior.num_vertices(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        if (fused.count[i] > 0) deviation[i] = cad_index->SignedDistance(fused.vertices[i]);
+                        deviation[i] = cad_index->SignedDistance(fused.vertices[i]);
                       }
                     });
   r.model.vertices = fused.vertices;
@@ -199,7 +201,7 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   }
   s.model_vertices = r.model.num_vertices();
   s.model_faces = r.model.num_faces();
-  for (const int c : fused.count) s.vertices_fused += c > 0;
+  for (const int c : fused.support) s.vertices_fused += c > 0;
   s.fusion_hits = fused.hits;
   s.hull_area = inspection.total_hull_area;
   s.inspected_area = inspection.total_inspected_area;
