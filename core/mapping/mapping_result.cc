@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <numeric>
 
+#include "base/atomic_directory.h"
 #include "base/csv.h"
 #include "base/file_io.h"
 #include "base/json.h"
@@ -199,17 +200,18 @@ void WriteSummary(const MappingResult& r, const std::string& dir) {
 
 }  // namespace
 
-void WriteMappingResult(const MappingResult& r, const std::string& dir) {
-  fs::create_directories(dir);
-  MeshSaveOptions ply;
-  ply.binary = true;
-  SaveMesh(r.model, Path(dir, "model.ply"), ply);
-  SaveMesh(r.model, Path(dir, "model.obj"));
-  SaveMesh(r.model, Path(dir, "model.stl"));
-  WriteObjects(r, dir);
-  WriteZones(r, dir);
-  WriteShapes(r, dir);
-  WriteSummary(r, dir);
+void WriteMappingResult(const MappingResult& r, const std::string& final_dir) {
+  WriteDirectoryAtomic(final_dir, [&](const std::string& dir) {
+    MeshSaveOptions ply;
+    ply.binary = true;
+    SaveMesh(r.model, Path(dir, "model.ply"), ply);
+    SaveMesh(r.model, Path(dir, "model.obj"));
+    SaveMesh(r.model, Path(dir, "model.stl"));
+    WriteObjects(r, dir);
+    WriteZones(r, dir);
+    WriteShapes(r, dir);
+    WriteSummary(r, dir);
+  });
 }
 
 }  // namespace hull
