@@ -58,6 +58,7 @@ void SurveySimulationOptions::Check() const {
   if (!(dvl_dropout >= 0 && dvl_dropout < 1)) throw OptionError("dvl_dropout", "must be in [0, 1)");
   if (!(max_feature_range > 0.5)) throw OptionError("max_feature_range", "must be > 0.5 m");
   if (scattered_patches < 0) throw OptionError("scattered_patches", "must be >= 0");
+  changes.Check();
 }
 
 std::vector<std::string> SurveyPresetNames() { return {"demo", "mono", "curtiss"}; }
@@ -261,6 +262,7 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   truth.x_gM = x_gM.ToVector();
   truth.x_s_cT = x_s_cT.ToVector();
   truth.objects = PlaceObjects(o, cad, axes, fmin, umin, s_centre, keys, x_gM, man, x_s_cT, rng);
+  if (o.changes.any()) ApplyFoulingChanges(truth.objects, cad, axes.forward, o.changes);
   TriangleMesh surface = out.cad;
   std::vector<int> face_object(out.cad.num_faces(), -1);
   for (std::size_t i = 0; i < truth.objects.size(); ++i) {

@@ -11,6 +11,7 @@
 
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
+#include "simulate/fouling_changes.h"
 #include "simulate/hull_forms.h"
 #include "simulate/survey_plan.h"
 #include "survey/survey.h"
@@ -78,6 +79,8 @@ struct SurveySimulationOptions {
 
   ObjectSet objects = ObjectSet::kDemo;
   int scattered_patches = 0;
+  // The second survey of a pair: the placed objects changed (fouling_changes.h).
+  FoulingChanges changes;
   bool write_landmarks = false;  // landmarks.csv with noisy initial positions
 
   void Check() const;  // throws OptionError
