@@ -29,6 +29,7 @@ void MappingOptions::Check() const {
   Require(Finite(refine_threshold) && refine_threshold >= 0, "refine_threshold", "must be >= 0 m");
   Require(Finite(refine_margin) && refine_margin >= 0 && refine_margin <= 2.0, "refine_margin",
           "must be between 0 and 2 m");
+  Require(Finite(significance_k) && significance_k > 0, "significance_k", "must be positive");
   Require(Finite(object_min_height) && object_min_height > 0, "object_min_height", "must be positive (m)");
   Require(Finite(object_min_area) && object_min_area >= 0, "object_min_area", "must be >= 0 m^2");
   Require(stations >= 1 && stations <= 1000, "stations", "must be between 1 and 1000");

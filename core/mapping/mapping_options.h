@@ -47,6 +47,12 @@ struct MappingOptions {
   // grown by this margin plus alpha.
   double refine_margin = 0.10;
 
+  // ---- Uncertainty -------------------------------------------------------------
+  // A vertex's deviation is significant when |deviation| > significance_k
+  // times its sigma (the sigma_h of the nearest adjusted landmark; M3C2's
+  // level of detection at 95 % for k = 1.96).
+  double significance_k = 1.96;
+
   // ---- Detected objects --------------------------------------------------------
   // A detected object is a connected region of the fused model whose
   // deviation exceeds object_min_height (h_min) ...

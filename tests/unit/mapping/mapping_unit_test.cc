@@ -44,6 +44,7 @@ TEST(MappingOptions, DefaultsPassAndEachBadFieldIsNamed) {
       {"refine_edge", [](MappingOptions& o) { o.refine_edge = 0.001; }},
       {"refine_threshold", [](MappingOptions& o) { o.refine_threshold = -1; }},
       {"refine_margin", [](MappingOptions& o) { o.refine_margin = 5; }},
+      {"significance_k", [](MappingOptions& o) { o.significance_k = 0; }},
       {"object_min_height", [](MappingOptions& o) { o.object_min_height = 0; }},
       {"object_min_area", [](MappingOptions& o) { o.object_min_area = -1; }},
       {"stations", [](MappingOptions& o) { o.stations = 0; }},
