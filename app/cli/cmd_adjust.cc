@@ -27,6 +27,8 @@ options:
   --max-iterations N   Levenberg-Marquardt iterations (default 100)
   --threads N          0: all cores (default)
   --linear-solver S    sparse-schur (default) or iterative-schur (less memory, slower)
+  --covariance M       landmark covariances and sigma of h: full (default),
+                       conditional (poses held fixed; cheap) or none
   --no-servo           hold the servo angles at their measurements
   --no-extrinsic       hold the camera extrinsic at its nominal value
   --no-dvl             leave out the DVL raycast factors
@@ -49,8 +51,8 @@ int RunAdjust(const CommandArgs& argv) {
     return kExitOk;
   }
   a.AllowOnly({"mesh", "mesh-scale", "model", "sigma0", "sigma1", "lookup", "max-iterations", "function-tolerance",
-               "linear-solver", "threads", "no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate", "verbose",
-               "quiet", "out"});
+               "linear-solver", "covariance", "threads", "no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate",
+               "verbose", "quiet", "out"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
@@ -74,6 +76,7 @@ int RunAdjust(const CommandArgs& argv) {
     else
       throw UsageError("--linear-solver expects sparse-schur or iterative-schur");
   }
+  o.covariance = ParseCovarianceMethod(a.Get("covariance", "full"));
   o.num_threads = static_cast<int>(a.GetInt("threads", 0));
   o.estimate_servo = !a.Has("no-servo");
   o.estimate_extrinsic = !a.Has("no-extrinsic");

@@ -32,6 +32,10 @@ options:
   --min-area M2        objects: minimum footprint area (default 0.01)
   --refine-edge M      edge length of the refined model (default 0.03)
   --fusion-radius M    fuse vertices within M of the camera (default 5)
+  --fusion RULE        peaks: a vertex rises to the height --support hits
+                       reach (default); mean: the paper's eq. 15
+  --support N          hits that must reach a height (default 2)
+  --peak-band M        hits averaged within M below it (default 0.005)
   --stations N         stations along the hull (default 20)
   --bundle DIR         survey bundle (default: the one adjustment.json names)
   --mesh PATH          prior mesh (default: the one adjustment.json names)
@@ -50,7 +54,7 @@ int RunMap(const CommandArgs& argv) {
     return kExitOk;
   }
   a.AllowOnly({"out", "tau", "alpha", "eps", "min-points", "h-min", "min-area", "refine-edge", "fusion-radius",
-               "stations", "bundle", "mesh", "mesh-scale", "threads", "quiet"});
+               "fusion", "support", "peak-band", "stations", "bundle", "mesh", "mesh-scale", "threads", "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
   const std::string results = a.positionals()[0];
   const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
@@ -63,6 +67,11 @@ int RunMap(const CommandArgs& argv) {
   o.object_min_area = a.GetDouble("min-area", o.object_min_area);
   o.refine_edge = a.GetDouble("refine-edge", o.refine_edge);
   o.fusion_radius = a.GetDouble("fusion-radius", o.fusion_radius);
+  const std::string rule = a.Get("fusion", "peaks");
+  if (rule != "peaks" && rule != "mean") throw UsageError("--fusion: expected 'peaks' or 'mean', got '" + rule + "'");
+  o.fusion_keep_peaks = rule == "peaks";
+  o.fusion_support = static_cast<int>(a.GetInt("support", o.fusion_support));
+  o.fusion_peak_band = a.GetDouble("peak-band", o.fusion_peak_band);
   o.stations = static_cast<int>(a.GetInt("stations", o.stations));
   o.num_threads = static_cast<int>(a.GetInt("threads", 0));
   o.Check();

@@ -59,6 +59,10 @@ options (each overrides the preset):
   --keyframe-spacing M     distance between keyframes along a track
   --objects none|demo|scattered   foreign structure
   --patches N              extra random fouling patches (with --objects scattered)
+  --grow N --growth M --remove N --add N
+                           the second survey of a pair (same --seed): the
+                           first N patches grown by M (default 0.05), the
+                           last N objects removed, N new patches
   --pixel-sigma PX --dvl-sigma M --feature-density PER_M2 --non-salient FRACTION
   --wrong-matches FRACTION (monocular)
   --servo-bias-deg D --model-pose-error-m M --model-pose-error-deg D
@@ -114,6 +118,10 @@ int RunSimulate(const CommandArgs& argv) {
                "keyframe-spacing",
                "objects",
                "patches",
+               "grow",
+               "growth",
+               "remove",
+               "add",
                "pixel-sigma",
                "dvl-sigma",
                "feature-density",
@@ -195,6 +203,10 @@ int RunSimulate(const CommandArgs& argv) {
       throw UsageError("--objects expects none, demo or scattered");
   }
   o.scattered_patches = static_cast<int>(a.GetInt("patches", o.scattered_patches));
+  o.changes.grow = static_cast<int>(a.GetInt("grow", o.changes.grow));
+  o.changes.growth = a.GetDouble("growth", o.changes.growth);
+  o.changes.remove = static_cast<int>(a.GetInt("remove", o.changes.remove));
+  o.changes.add = static_cast<int>(a.GetInt("add", o.changes.add));
   o.noise.pixel_sigma = a.GetDouble("pixel-sigma", o.noise.pixel_sigma);
   o.noise.dvl_range_sigma = a.GetDouble("dvl-sigma", o.noise.dvl_range_sigma);
   o.hull_feature_density = a.GetDouble("feature-density", o.hull_feature_density);

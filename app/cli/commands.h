@@ -16,6 +16,7 @@ int RunAlign(const CommandArgs& args);     // cmd_align.cc    (GICP initial alig
 int RunAdjust(const CommandArgs& args);    // cmd_adjust.cc   (model-assisted BA)
 int RunMap(const CommandArgs& args);       // cmd_map.cc      (shapes, fusion, assessment)
 int RunPipeline(const CommandArgs& args);  // cmd_run.cc      (align -> adjust -> map: the headless main job)
+int RunCompare(const CommandArgs& args);   // cmd_compare.cc  (change between two surveys)
 int RunSonar(const CommandArgs& args);     // cmd_sonar.cc    (imaging-sonar EKF)
 int RunExport(const CommandArgs& args);    // cmd_export.cc   (the remeshed model in other formats)
 int RunFeatures(const CommandArgs& args);  // cmd_features.cc (visual front end: images -> features.csv)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "adjust/landmark_covariance.h"
 #include "geometry/mesh_index.h"
 
 namespace hull {
@@ -65,6 +66,10 @@ struct AdjustmentOptions {
   double parameter_tolerance = 1e-8;
   int num_threads = 0;  // 0: all cores
   bool verbose = false;
+  // Landmark covariances after the solve (landmark_covariance.h): full (the
+  // marginal, Ceres' sparse-QR covariance), conditional (poses held fixed;
+  // cheap, optimistic) or none. Each landmark's sigma of h follows.
+  CovarianceMethod covariance = CovarianceMethod::kFull;
 
   // Throws OptionError naming the field: sigma0 > sigma1 > 0, positive
   // overrides or 0, max_iterations >= 1, ...

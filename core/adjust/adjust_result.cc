@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include "base/csv.h"
 #include "base/file_io.h"
@@ -23,6 +24,12 @@ Vector6d Vec6(const JsonReader& r, const char* key) {
 }
 
 std::string Path(const std::string& dir, const char* f) { return (fs::path(dir) / f).string(); }
+
+std::optional<double> Finite(double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; }
+
+// The upper triangle of a landmark covariance in landmarks.csv.
+constexpr std::pair<int, int> kCovarianceEntries[6] = {{0, 0}, {0, 1}, {0, 2}, {1, 1}, {1, 2}, {2, 2}};
+constexpr const char* kCovarianceColumns[6] = {"cov_xx", "cov_xy", "cov_xz", "cov_yy", "cov_yz", "cov_zz"};
 
 }  // namespace
 
@@ -69,6 +76,9 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   sum.Set("observations_rejected", r.observations_rejected);
   sum.Set("fraction_on_surface", r.FractionOnSurface());
   sum.Set("decision_boundary", r.options.DecisionBoundary());
+  sum.Set("covariance", CovarianceMethodName(r.covariance_method));
+  if (!r.covariance_note.empty()) sum.Set("covariance_note", r.covariance_note);
+  sum.Set("covariance_seconds", r.covariance_seconds);
   root.Set("summary", sum);
   root.Set("x_gM", Vec(r.x_gM));
   root.Set("x_gM_initial", Vec(r.x_gM_initial));
@@ -94,16 +104,18 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
     poses.EndRow();
   }
   WriteFileAtomic(Path(dir, "poses.csv"), poses.text());
-  CsvWriter lms({"landmark", "x", "y", "z", "label", "deviation", "observations"});
+  CsvWriter lms({"landmark", "x", "y", "z", "label", "deviation", "observations", "sigma_h", "cov_xx", "cov_xy",
+                 "cov_xz", "cov_yy", "cov_yz", "cov_zz"});
   for (const auto& l : r.landmarks) {
     lms.Add(l.id).Add(l.p.x()).Add(l.p.y()).Add(l.p.z()).Add(l.label).Add(l.deviation).Add(l.observations);
+    lms.AddOptional(Finite(l.sigma_h));
+    for (const auto& [i, j] : kCovarianceEntries) lms.AddOptional(Finite(l.covariance(i, j)));
     lms.EndRow();
   }
   WriteFileAtomic(Path(dir, "landmarks.csv"), lms.text());
   CsvWriter dvl({"keyframe", "beam", "measured", "initial", "final"});
-  auto opt_d = [](double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; };
   for (const auto& d : r.dvl) {
-    dvl.Add(d.keyframe).Add(d.beam).Add(d.measured).AddOptional(opt_d(d.initial)).AddOptional(opt_d(d.final));
+    dvl.Add(d.keyframe).Add(d.beam).Add(d.measured).AddOptional(Finite(d.initial)).AddOptional(Finite(d.final));
     dvl.EndRow();
   }
   WriteFileAtomic(Path(dir, "dvl_residuals.csv"), dvl.text());
@@ -146,6 +158,14 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
   r.final_cost = sum.Number("final_cost");
   r.num_residual_blocks = static_cast<int>(sum.Integer("residual_blocks"));
   r.num_landmarks_skipped = static_cast<int>(sum.Integer("landmarks_skipped"));
+  if (auto m = sum.OptionalString("covariance")) {
+    try {
+      r.covariance_method = ParseCovarianceMethod(*m);
+    } catch (const OptionError& e) {
+      sum.Fail(sum.Required("covariance"), "covariance", e.what());
+    }
+  }
+  r.covariance_note = sum.OptionalString("covariance_note").value_or("");
   r.observations_rejected = static_cast<int>(sum.NumberOr("observations_rejected", 0));
   r.x_gM = Vec6(root, "x_gM");
   r.x_gM_initial = Vec6(root, "x_gM_initial");
@@ -179,6 +199,9 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
     CsvReader c(text, p);
     const int id = c.Require("landmark"), x = c.Require("x"), y = c.Require("y"), z = c.Require("z");
     const int label = c.Require("label"), dev = c.Require("deviation"), obs = c.Require("observations");
+    const int sigma = c.Find("sigma_h");
+    int cov[6];
+    for (int k = 0; k < 6; ++k) cov[k] = c.Find(kCovarianceColumns[k]);
     while (c.Next()) {
       LandmarkEstimate l;
       l.id = c.Int(id);
@@ -187,6 +210,11 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
       if (l.label != 0 && l.label != 1) c.Fail(label, "expected 0 or 1");
       l.deviation = c.Double(dev);
       l.observations = static_cast<int>(c.Int(obs));
+      l.sigma_h = c.OptionalDouble(sigma).value_or(std::nan(""));
+      for (int k = 0; k < 6; ++k) {
+        const auto [i, j] = kCovarianceEntries[k];
+        l.covariance(i, j) = l.covariance(j, i) = c.OptionalDouble(cov[k]).value_or(std::nan(""));
+      }
       r.landmarks.push_back(l);
     }
   }

@@ -7,6 +7,7 @@
 //   dvl_residuals.csv keyframe,beam,measured,initial,final         (m; empty = no hit)
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ struct LandmarkEstimate {
   int label = 1;                                // lambda: 1 on the hull, 0 foreign structure (max-mixture decision)
   double deviation = 0;                         // h(x_gM, l): orthogonal signed distance to the mesh (m)
   int observations = 0;                         // keyframes that saw it
+  // Covariance of p (m^2, in g) and the standard deviation of `deviation`
+  // it implies along the surface normal (m); NaN when not computed.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Constant(std::nan(""));
+  double sigma_h = std::nan("");
 };
 
 struct DvlResidual {
@@ -66,6 +71,10 @@ struct AdjustmentResult {
   int num_residual_blocks = 0;
   int num_landmarks_skipped = 0;  // too few observations, not triangulable, or lost to outlier rejection
   int observations_rejected = 0;  // reprojection outliers removed (wrong matches)
+  // How the landmark covariances were computed (a fallback says why) and how long it took.
+  CovarianceMethod covariance_method = CovarianceMethod::kNone;
+  std::string covariance_note;
+  double covariance_seconds = 0;
 
   // The fraction of landmarks with lambda = 1 at the end.
   double FractionOnSurface() const;

@@ -347,9 +347,11 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     }
   }
   // Surface constraints.
+  std::vector<ceres::ResidualBlockId> surface_block(s.landmark.size(), nullptr);
   if (o.model != SurfaceModel::kNaive) {
-    for (auto& l : s.landmark) {
-      problem.AddResidualBlock(
+    for (std::size_t li = 0; li < s.landmark.size(); ++li) {
+      auto& l = s.landmark[li];
+      surface_block[li] = problem.AddResidualBlock(
           adjust::SurfaceFactor::Create(&index, &s.model_offset, o.lookup, o.model, o.sigma0, o.sigma1), nullptr,
           s.model.data(), l.data());
     }
@@ -505,12 +507,32 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   result.x_s_cT = BlockToPose(s.extrinsic.data()).ToVector();
   result.x_s_cT_initial = extrinsic_nominal.ToVector();
   const Pose x_gM = s.ModelPose();
+  // Landmark covariances (landmark_covariance.h), in the order of the kept landmarks.
+  std::vector<double*> kept_blocks;
+  std::vector<ceres::ResidualBlockId> kept_surface;
   for (std::size_t i = 0; i < s.landmark.size(); ++i) {
+    if (dropped[i]) continue;
+    kept_blocks.push_back(s.landmark[i].data());
+    kept_surface.push_back(surface_block[i]);
+  }
+  if (o.covariance != CovarianceMethod::kNone) progress.Update(0.95, "landmark covariances");
+  const LandmarkCovariances cov =
+      ComputeLandmarkCovariances(problem, kept_blocks, o.covariance, so.num_threads, s.model.data(), &kept_surface);
+  result.covariance_method = cov.method;
+  result.covariance_note = cov.note;
+  result.covariance_seconds = cov.seconds;
+  for (std::size_t i = 0, kept_index = 0; i < s.landmark.size(); ++i) {
     if (dropped[i]) continue;
     LandmarkEstimate e;
     e.id = s.landmark_id[i];
     e.p = {s.landmark[i][0], s.landmark[i][1], s.landmark[i][2]};
     e.deviation = adjust::SurfaceDeviation(index, x_gM, e.p, o.lookup);
+    e.covariance = cov.covariance[kept_index];
+    e.sigma_h =
+        std::isfinite(cov.sigma_h[kept_index])
+            ? cov.sigma_h[kept_index]
+            : DeviationSigma(e.covariance, x_gM.Rotate(index.OrthogonalSignedDistance(x_gM, e.p, o.lookup).normal));
+    ++kept_index;
     e.label = MaxMixtureLabel(e.deviation, o.sigma0, o.sigma1);
     e.observations = s.landmark_views[i];
     result.landmarks.push_back(e);

@@ -1,6 +1,7 @@
 #include "mapping/detected_objects.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <set>
@@ -31,6 +32,15 @@ struct Component {
   std::set<std::int64_t> keyframes;
   int object = -1;  // index into the output, when kept
 };
+
+// Nearest-rank percentile q in (0, 1] of a non-empty set.
+double Percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const std::size_t rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  const std::size_t i = std::min(v.size() - 1, rank > 0 ? rank - 1 : 0);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(i), v.end());
+  return v[i];
+}
 
 }  // namespace
 
@@ -157,6 +167,9 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
     obj.area = c.area;
     obj.mean_height = c.integral / c.area;
     obj.max_height = c.max_height;
+    std::vector<double> heights;
+    for (const int v : c.vertices) heights.push_back(deviation[static_cast<std::size_t>(v)]);
+    obj.p95_height = Percentile(heights, 0.95);
     obj.num_features = static_cast<int>(c.landmarks.size());
     obj.keyframes.assign(c.keyframes.begin(), c.keyframes.end());
     obj.num_views = static_cast<int>(obj.keyframes.size());

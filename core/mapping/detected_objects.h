@@ -33,6 +33,7 @@ struct DetectedObject {
   double area = 0;                      // m^2
   double mean_height = 0;               // m, area-weighted over the footprint
   double max_height = 0;                // m, the highest fused vertex
+  double p95_height = 0;                // m, 95th percentile of the footprint's vertex heights (nearest rank)
   int num_features = 0;                 // landmarks of this run's shapes lying over the footprint
   int num_views = 0;                    // keyframes whose shapes hold at least one of them
   std::vector<std::int64_t> keyframes;  // their ids, ascending

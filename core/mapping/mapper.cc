@@ -56,6 +56,9 @@ struct Mapper::Impl {
   TriangleMesh cad;
   std::unique_ptr<MeshIndex> cad_index;
   std::vector<Pose> x_M_cT;
+  // Landmarks with a sigma_h (in M) and their sigmas; null when none has one.
+  std::unique_ptr<PointIndex> landmark_sigma_index;
+  std::vector<double> landmark_sigma;
   std::mutex mutex;
   int refinements = 0;
 
@@ -77,6 +80,13 @@ Mapper::Mapper(MappingInput input, TriangleMesh cad) : impl_(std::make_unique<Im
   impl_->cad_index = std::make_unique<MeshIndex>(impl_->cad);
   const Pose x_Mg = impl_->input.x_gM.Inverse();
   for (const auto& k : impl_->input.keyframes) impl_->x_M_cT.push_back(x_Mg * k.x_g_cT);
+  std::vector<Eigen::Vector3d> with_sigma;
+  for (const auto& l : impl_->input.landmarks) {
+    if (!(l.sigma_h > 0)) continue;
+    with_sigma.push_back(x_Mg * l.p_g);
+    impl_->landmark_sigma.push_back(l.sigma_h);
+  }
+  if (!with_sigma.empty()) impl_->landmark_sigma_index = std::make_unique<PointIndex>(with_sigma);
 }
 
 Mapper::~Mapper() = default;
@@ -144,17 +154,19 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   t = Clock::now();
   progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
   SubProgress fusion_progress(progress, 0.5, 0.8);
-  const FusionResult fused = FuseShapes(prior, *refined->tree, x_M_cT, shapes, o.fusion_radius, fusion_progress);
+  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band};
+  const FusionResult fused = FuseShapes(prior, *refined->tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
   s.seconds.fusion = Since(t);
 
-  // Each fused vertex's signed deviation from the CAD surface.
+  // Every vertex's signed distance to the CAD surface (fused or not: a
+  // vertex no shape touched lies on the CAD, within rounding).
   t = Clock::now();
   progress.Update(0.8, "measuring the fused model's deviation from the CAD");
   std::vector<double> deviation(prior.num_vertices(), 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, prior.num_vertices(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
                       for (std::size_t i = range.begin(); i != range.end(); ++i) {
-                        if (fused.count[i] > 0) deviation[i] = cad_index->SignedDistance(fused.vertices[i]);
+                        deviation[i] = cad_index->SignedDistance(fused.vertices[i]);
                       }
                     });
   r.model.vertices = fused.vertices;
@@ -162,6 +174,18 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   r.model.ComputeNormals();
   r.model.SetScalar("deviation", deviation);
   r.model.SetScalar("fusions", std::vector<double>(fused.count.begin(), fused.count.end()));
+  // Per-vertex sigma: the sigma_h of the nearest landmark that has one.
+  if (landmark_sigma_index) {
+    std::vector<double> sigma(prior.num_vertices(), std::nan("")), significant(prior.num_vertices(), 0.0);
+    tbb::parallel_for(std::size_t(0), prior.num_vertices(), [&](std::size_t i) {
+      const auto nearest = landmark_sigma_index->NearestOne(fused.vertices[i]);
+      if (nearest.first < 0) return;
+      sigma[i] = landmark_sigma[static_cast<std::size_t>(nearest.first)];
+      significant[i] = std::abs(deviation[i]) > o.significance_k * sigma[i] ? 1.0 : 0.0;
+    });
+    r.model.SetScalar("sigma", sigma);
+    r.model.SetScalar("significant", significant);
+  }
   s.seconds.deviation = Since(t);
   progress.ThrowIfCancelled();
 
@@ -199,7 +223,7 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   }
   s.model_vertices = r.model.num_vertices();
   s.model_faces = r.model.num_faces();
-  for (const int c : fused.count) s.vertices_fused += c > 0;
+  for (const int c : fused.support) s.vertices_fused += c > 0;
   s.fusion_hits = fused.hits;
   s.hull_area = inspection.total_hull_area;
   s.inspected_area = inspection.total_inspected_area;

@@ -54,7 +54,7 @@ MappingInput MappingInputFromAdjustment(const AdjustmentResult& r, const SurveyB
   std::unordered_map<std::int64_t, int> landmark_index;
   for (const auto& l : r.landmarks) {
     landmark_index.emplace(l.id, static_cast<int>(in.landmarks.size()));
-    in.landmarks.push_back({l.id, l.p, l.deviation});
+    in.landmarks.push_back({l.id, l.p, l.deviation, l.sigma_h});
   }
   AttachObservations(bundle, keyframe_index, landmark_index, in);
   return in;

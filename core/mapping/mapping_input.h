@@ -6,6 +6,7 @@
 // deviation, as if adjusted perfectly).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -21,6 +22,7 @@ struct MappingLandmark {
   std::int64_t id = 0;
   Eigen::Vector3d p_g = Eigen::Vector3d::Zero();  // position in g
   double deviation = 0;                           // signed distance to the CAD surface (m, positive outside)
+  double sigma_h = std::nan("");                  // its standard deviation from the adjustment (m); NaN: unknown
 };
 
 struct MappingKeyframe {

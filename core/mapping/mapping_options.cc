@@ -22,10 +22,14 @@ void MappingOptions::Check() const {
   Require(Finite(dbscan_eps) && dbscan_eps > 0, "dbscan_eps", "must be positive (m)");
   Require(dbscan_min_points >= 1, "dbscan_min_points", "must be at least 1");
   Require(Finite(fusion_radius) && fusion_radius > 0, "fusion_radius", "must be positive (m)");
+  Require(fusion_support >= 1 && fusion_support <= 100, "fusion_support", "must be between 1 and 100");
+  Require(Finite(fusion_peak_band) && fusion_peak_band >= 0 && fusion_peak_band <= 0.1, "fusion_peak_band",
+          "must be between 0 and 0.1 m");
   Require(Finite(refine_edge) && refine_edge >= 0.005, "refine_edge", "must be at least 0.005 m");
   Require(Finite(refine_threshold) && refine_threshold >= 0, "refine_threshold", "must be >= 0 m");
   Require(Finite(refine_margin) && refine_margin >= 0 && refine_margin <= 2.0, "refine_margin",
           "must be between 0 and 2 m");
+  Require(Finite(significance_k) && significance_k > 0, "significance_k", "must be positive");
   Require(Finite(object_min_height) && object_min_height > 0, "object_min_height", "must be positive (m)");
   Require(Finite(object_min_area) && object_min_area >= 0, "object_min_area", "must be >= 0 m^2");
   Require(stations >= 1 && stations <= 1000, "stations", "must be between 1 and 1000");

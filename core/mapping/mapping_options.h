@@ -26,6 +26,16 @@ struct MappingOptions {
   // Only model vertices within this distance of the top camera are fused
   // (the paper's nearby_vertices(), 5 m).
   double fusion_radius = 5.0;
+  // How a vertex's hits combine (FusionRule, shape_fusion.h): true keeps
+  // peaks (the vertex rises to the height fusion_support hits reach, the
+  // mean of those within fusion_peak_band below it); false is the paper's
+  // eq. 15 (the mean of every hit), which flattens narrow peaks.
+  bool fusion_keep_peaks = true;
+  // Hits that must reach a height before a vertex rises to it (so one wrong
+  // match cannot raise a peak); a vertex with fewer hits stays on the CAD.
+  int fusion_support = 2;
+  // Hits within this band (m) below the supported height are averaged.
+  double fusion_peak_band = 0.005;
   // Target edge length of the isotropic remeshing where shapes depart from
   // the CAD surface.
   double refine_edge = 0.03;
@@ -36,6 +46,12 @@ struct MappingOptions {
   // The refined region is where departing features are seen on the CAD,
   // grown by this margin plus alpha.
   double refine_margin = 0.10;
+
+  // ---- Uncertainty -------------------------------------------------------------
+  // A vertex's deviation is significant when |deviation| > significance_k
+  // times its sigma (the sigma_h of the nearest adjusted landmark; M3C2's
+  // level of detection at 95 % for k = 1.96).
+  double significance_k = 1.96;
 
   // ---- Detected objects --------------------------------------------------------
   // A detected object is a connected region of the fused model whose

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <numeric>
 
+#include "base/atomic_directory.h"
 #include "base/csv.h"
 #include "base/file_io.h"
 #include "base/json.h"
@@ -34,6 +35,9 @@ Json OptionsJson(const MappingOptions& o) {
   j.Set("dbscan_eps", o.dbscan_eps);
   j.Set("dbscan_min_points", o.dbscan_min_points);
   j.Set("fusion_radius", o.fusion_radius);
+  j.Set("fusion_keep_peaks", o.fusion_keep_peaks);
+  j.Set("fusion_support", o.fusion_support);
+  j.Set("fusion_peak_band", o.fusion_peak_band);
   j.Set("refine_edge", o.refine_edge);
   j.Set("refine_threshold", o.refine_threshold);
   j.Set("refine_margin", o.refine_margin);
@@ -48,14 +52,14 @@ Json OptionsJson(const MappingOptions& o) {
 
 void WriteObjects(const MappingResult& r, const std::string& dir) {
   CsvWriter csv({"id", "x", "y", "z", "nx", "ny", "nz", "distance_from_bow", "station", "side", "area", "mean_height",
-                 "max_height", "features", "views", "keyframes"});
+                 "max_height", "features", "views", "keyframes", "p95_height"});
   Json list = Json::Array();
   for (const DetectedObject& o : r.objects) {
     csv.Add(o.id);
     for (int k = 0; k < 3; ++k) csv.Add(o.centroid_m[k]);
     for (int k = 0; k < 3; ++k) csv.Add(o.normal_m[k]);
     csv.Add(o.distance_from_bow).Add(o.station).Add(HullSideName(o.side)).Add(o.area).Add(o.mean_height);
-    csv.Add(o.max_height).Add(o.num_features).Add(o.num_views).Add(JoinIds(o.keyframes));
+    csv.Add(o.max_height).Add(o.num_features).Add(o.num_views).Add(JoinIds(o.keyframes)).Add(o.p95_height);
     csv.EndRow();
     Json j = Json::Object();
     j.Set("id", o.id);
@@ -67,6 +71,7 @@ void WriteObjects(const MappingResult& r, const std::string& dir) {
     j.Set("area", o.area);
     j.Set("mean_height", o.mean_height);
     j.Set("max_height", o.max_height);
+    j.Set("p95_height", o.p95_height);
     j.Set("features", o.num_features);
     j.Set("views", o.num_views);
     j.Set("keyframes", Json::ArrayOf(o.keyframes));
@@ -195,17 +200,18 @@ void WriteSummary(const MappingResult& r, const std::string& dir) {
 
 }  // namespace
 
-void WriteMappingResult(const MappingResult& r, const std::string& dir) {
-  fs::create_directories(dir);
-  MeshSaveOptions ply;
-  ply.binary = true;
-  SaveMesh(r.model, Path(dir, "model.ply"), ply);
-  SaveMesh(r.model, Path(dir, "model.obj"));
-  SaveMesh(r.model, Path(dir, "model.stl"));
-  WriteObjects(r, dir);
-  WriteZones(r, dir);
-  WriteShapes(r, dir);
-  WriteSummary(r, dir);
+void WriteMappingResult(const MappingResult& r, const std::string& final_dir) {
+  WriteDirectoryAtomic(final_dir, [&](const std::string& dir) {
+    MeshSaveOptions ply;
+    ply.binary = true;
+    SaveMesh(r.model, Path(dir, "model.ply"), ply);
+    SaveMesh(r.model, Path(dir, "model.obj"));
+    SaveMesh(r.model, Path(dir, "model.stl"));
+    WriteObjects(r, dir);
+    WriteZones(r, dir);
+    WriteShapes(r, dir);
+    WriteSummary(r, dir);
+  });
 }
 
 }  // namespace hull

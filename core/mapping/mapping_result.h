@@ -58,8 +58,9 @@ struct MappingResult {
   MappingSummary summary;
 };
 
-// Writes the folder described above (creating it); files are written
-// atomically. Throws std::runtime_error when a file cannot be written.
+// Writes the folder described above, replacing it as a whole
+// (WriteDirectoryAtomic: a failed or killed run leaves the previous results
+// intact). Throws std::runtime_error when a file cannot be written.
 void WriteMappingResult(const MappingResult& result, const std::string& dir);
 
 }  // namespace hull

@@ -210,6 +210,10 @@ RefinedMesh RefineMesh(const TriangleMesh& cad, const MeshIndex& cad_index, cons
   const std::size_t after = sm.number_of_faces();
   out.refined_faces = static_cast<int>(after + faces.size() - before);
   out.mesh = FromSurfaceMesh(sm);
+  // The remeshing's edge collapses and flips cut the CAD's curvature (the
+  // coarse pass by up to centimetres); put every vertex back on the CAD.
+  for (Eigen::Vector3d& v : out.mesh.vertices) v = cad_index.Closest(v).point;
+  out.mesh.ComputeNormals();
   return out;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 
 #include "geometry/point_index.h"
 #include "mapping/shape_raycast.h"
@@ -36,19 +37,54 @@ bool RayThroughVertex(const Pose& cam, const Pose& cam_inv, const Eigen::Vector3
   return true;
 }
 
-FusionResult Start(const TriangleMesh& prior) {
+FusionResult Finish(const TriangleMesh& prior, const std::vector<std::vector<Eigen::Vector3d>>& hits,
+                    const FusionRule& rule, std::size_t total) {
   FusionResult r;
   r.vertices = prior.vertices;
   r.count.assign(prior.num_vertices(), 0);
+  r.support.assign(prior.num_vertices(), 0);
+  r.hits = total;
+  tbb::parallel_for(std::size_t(0), hits.size(), [&](std::size_t i) {
+    if (hits[i].empty()) return;
+    r.count[i] = static_cast<int>(hits[i].size());
+    r.vertices[i] = CombineHits(hits[i], prior.vertices[i], prior.vertex_normals[i], rule, &r.support[i]);
+  });
   return r;
 }
 
 }  // namespace
 
+Eigen::Vector3d CombineHits(const std::vector<Eigen::Vector3d>& hits, const Eigen::Vector3d& prior,
+                            const Eigen::Vector3d& normal, const FusionRule& rule, int* support) {
+  *support = 0;
+  if (hits.empty()) return prior;
+  if (!rule.keep_peaks) {
+    MovingAverage a;
+    for (const auto& p : hits) a.Add(p);
+    *support = a.n;
+    return a.value;
+  }
+  const int k = std::max(1, rule.support);
+  if (static_cast<int>(hits.size()) < k) return prior;
+  std::vector<double> h(hits.size());
+  for (std::size_t i = 0; i < hits.size(); ++i) h[i] = (hits[i] - prior).dot(normal);
+  std::vector<double> sorted = h;
+  std::nth_element(sorted.begin(), sorted.begin() + (k - 1), sorted.end(), std::greater<double>());
+  const double hk = sorted[static_cast<std::size_t>(k - 1)];
+  MovingAverage a;
+  for (std::size_t i = 0; i < hits.size(); ++i) {
+    if (h[i] < hk - rule.band) continue;
+    ++*support;
+    if (h[i] <= hk) a.Add(hits[i]);
+  }
+  return a.value;
+}
+
 FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& tree, const std::vector<Pose>& x_M_cT,
-                        const std::vector<KeyframeShapes>& shapes, double radius, Progress& progress) {
-  FusionResult r = Start(prior);
-  std::vector<MovingAverage> avg(prior.num_vertices());
+                        const std::vector<KeyframeShapes>& shapes, double radius, const FusionRule& rule,
+                        Progress& progress) {
+  std::vector<std::vector<Eigen::Vector3d>> per_vertex(prior.num_vertices());
+  std::size_t total = 0;
   const double radius2 = radius * radius;
   std::vector<std::vector<Hit>> hits(kChunk);
   for (std::size_t begin = 0; begin < shapes.size(); begin += kChunk) {
@@ -81,27 +117,19 @@ FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& tree, co
     });
     for (std::size_t k = begin; k < end; ++k) {
       for (const Hit& h : hits[k - begin]) {
-        MovingAverage& a = avg[static_cast<std::size_t>(h.vertex)];
-        if (a.n == 0) a.value = prior.vertices[static_cast<std::size_t>(h.vertex)];
-        a.Add(h.p);
-        ++r.hits;
+        per_vertex[static_cast<std::size_t>(h.vertex)].push_back(h.p);
+        ++total;
       }
     }
     progress.Update(static_cast<double>(end) / static_cast<double>(shapes.size()), "fusing shapes into the model");
   }
-  for (std::size_t i = 0; i < avg.size(); ++i) {
-    if (avg[i].n == 0) continue;
-    r.vertices[i] = avg[i].value;
-    r.count[i] = avg[i].n;
-  }
-  return r;
+  return Finish(prior, per_vertex, rule, total);
 }
 
 FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<Pose>& x_M_cT,
-                                  const std::vector<KeyframeShapes>& shapes, double radius) {
-  FusionResult r = Start(prior);
-  std::vector<MovingAverage> avg(prior.num_vertices());
-  for (std::size_t i = 0; i < avg.size(); ++i) avg[i].value = prior.vertices[i];
+                                  const std::vector<KeyframeShapes>& shapes, double radius, const FusionRule& rule) {
+  std::vector<std::vector<Eigen::Vector3d>> per_vertex(prior.num_vertices());
+  std::size_t total = 0;
   const PointIndex index(prior.vertices);
   const double radius2 = radius * radius;
   for (const KeyframeShapes& ks : shapes) {  // line 2
@@ -122,18 +150,13 @@ FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<P
                 cam, inv, prior.vertices[static_cast<std::size_t>(i)],
                 prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
                 [&](const Eigen::Vector3d& dir) { return FirstShapeHit(s, dir); }, &p)) {
-          avg[static_cast<std::size_t>(i)].Add(p);  // line 11
-          ++r.hits;
+          per_vertex[static_cast<std::size_t>(i)].push_back(p);  // line 11
+          ++total;
         }
       }
     }
   }
-  for (std::size_t i = 0; i < avg.size(); ++i) {
-    if (avg[i].n == 0) continue;
-    r.vertices[i] = avg[i].value;
-    r.count[i] = avg[i].n;
-  }
-  return r;
+  return Finish(prior, per_vertex, rule, total);
 }
 
 }  // namespace hull

@@ -4,7 +4,8 @@
 // where it meets it at p, the vertex is updated by the moving average of
 // eq. 15, v_{n+1} = (p + n v_n) / (n + 1) (so a fused vertex is the mean of
 // its hits, and an unhit one keeps its prior position). Rays go through the
-// prior vertex positions, as in the paper.
+// prior vertex positions, as in the paper. The hits are then combined by a
+// FusionRule: eq. 15's mean, or (the default) the peak-keeping rule below.
 //
 // Two departures from the paper's text, both documented in docs/mapping.md:
 // the ray is the whole ray through the vertex (up to fusion_radius), not the
@@ -31,6 +32,22 @@
 
 namespace hull {
 
+// How a vertex's hits become its fused position. The paper's eq. 15 (the
+// mean of every hit) flattens a narrow peak: the peak reaches a vertex only
+// through the rays of the views that see it over that vertex, the other
+// views' rays land lower and pull it down. keep_peaks instead takes the
+// height the hits support: heights are measured along the prior vertex's
+// outward normal, h_k is the support-th highest hit, and the vertex moves to
+// the mean of the hits whose heights lie in [h_k - band, h_k]. So a peak
+// that at least `support` hits reach is kept (to within band), while one
+// wrong hit above the rest (a wrong match) cannot raise the vertex, and a
+// vertex with fewer than `support` hits stays where it was.
+struct FusionRule {
+  bool keep_peaks = true;  // false: eq. 15, the mean of every hit
+  int support = 2;         // hits that must reach a height (keep_peaks)
+  double band = 0.005;     // m, hits averaged below h_k (keep_peaks)
+};
+
 // Eq. 15: the running mean of a vertex's hits.
 struct MovingAverage {
   Eigen::Vector3d value = Eigen::Vector3d::Zero();  // v_n (v_0: the prior vertex)
@@ -42,8 +59,9 @@ struct MovingAverage {
 };
 
 struct FusionResult {
-  std::vector<Eigen::Vector3d> vertices;  // fused positions (in M), the prior one where never hit
+  std::vector<Eigen::Vector3d> vertices;  // fused positions (in M), the prior one where not moved
   std::vector<int> count;                 // hits per vertex (n of eq. 15)
+  std::vector<int> support;               // hits at or above the fused height less the band (0: not moved)
   std::size_t hits = 0;                   // evaluations of line 11
 };
 
@@ -52,12 +70,19 @@ struct FusionResult {
 // keyframe (indexed like MappingInput::keyframes); shapes: Algorithm 1's
 // results (KeyframeShapes::keyframe indexes x_M_cT). Throws hull::Cancelled.
 FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& prior_tree, const std::vector<Pose>& x_M_cT,
-                        const std::vector<KeyframeShapes>& shapes, double fusion_radius, Progress& progress);
+                        const std::vector<KeyframeShapes>& shapes, double fusion_radius, const FusionRule& rule,
+                        Progress& progress);
 
 // The reference: for every keyframe, the vertices within fusion_radius (a
 // k-d tree, the paper's nearby_vertices()), every shape, every vertex, every
 // triangle. Slow; for tests.
 FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<Pose>& x_M_cT,
-                                  const std::vector<KeyframeShapes>& shapes, double fusion_radius);
+                                  const std::vector<KeyframeShapes>& shapes, double fusion_radius,
+                                  const FusionRule& rule = FusionRule{});
+
+// A vertex's hits (in the order the loops meet them) combined by `rule`;
+// prior/normal: the prior vertex and its outward normal. Sets *support.
+Eigen::Vector3d CombineHits(const std::vector<Eigen::Vector3d>& hits, const Eigen::Vector3d& prior,
+                            const Eigen::Vector3d& normal, const FusionRule& rule, int* support);
 
 }  // namespace hull

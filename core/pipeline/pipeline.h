@@ -78,7 +78,9 @@ PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& opti
 // Writes DIR/features/ (features.csv and match-graph.csv, when the front end
 // ran), DIR/alignment.json, DIR/adjustment/ (and DIR/adjustment-<model>/
 // for the baselines), DIR/mapping/ (remeshed model PLY/OBJ/STL, objects and
-// zones CSV/JSON), DIR/evaluation.txt with truth, and DIR/summary.json.
+// zones CSV/JSON), DIR/evaluation.txt with truth, and DIR/summary.json,
+// replacing DIR as a whole (WriteDirectoryAtomic: a failed or killed run
+// leaves the previous results intact).
 void WritePipelineResult(const PipelineInputs& in, const PipelineResult& result, const std::string& dir);
 
 }  // namespace hull

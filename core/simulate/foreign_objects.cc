@@ -97,6 +97,11 @@ TriangleMesh MakeObjectMesh(const TrueObject& o, std::uint64_t seed, double sink
         ph[i] = rng.Uniform(0, 2 * M_PI);
       }
       const double rim_ph = rng.Uniform(0, 2 * M_PI);
+      // Every other clump (drawn last, so the others keep their shapes) has
+      // a narrow peak: a cone-like top (1 - rho^2)^3, the top centimetre of
+      // it a few centimetres across (a tube-worm tuft), which a fusion that
+      // averages its hits flattens.
+      const bool narrow = rng.Uniform() < 0.5;
       // A lumpy clump (barnacles, tube worms): a broad top falling off
       // steeply toward the rim, with lobes; rho^2 keeps the centre exactly
       // at height h, which is the highest point.
@@ -104,11 +109,12 @@ TriangleMesh MakeObjectMesh(const TrueObject& o, std::uint64_t seed, double sink
         double lobes = 1.0;
         for (int i = 0; i < 3; ++i) lobes += amp[i] * std::sin((i + 2) * phi + ph[i]);
         const double r2 = rho * rho;
-        const double shape = std::pow(std::max(0.0, 1.0 - r2 * r2), 1.5);
+        const double shape = narrow ? std::pow(1.0 - r2, 3.0) : std::pow(std::max(0.0, 1.0 - r2 * r2), 1.5);
         return h * shape * (1.0 + 0.5 * (lobes - 1.0) * r2 * r2);
       };
       auto rim = [=](double phi) { return r * (0.85 + 0.15 * std::sin(2 * phi + rim_ph)); };
-      AddHeightfield(m, o.center, e1, e2, n, 8, 32, sink, top, rim);
+      // Narrow peaks get finer rings near the centre.
+      AddHeightfield(m, o.center, e1, e2, n, narrow ? 16 : 8, 32, sink, top, rim);
       break;
     }
   }

@@ -63,6 +63,7 @@ void SurveySimulationOptions::Check() const {
   if (scattered_patches < 0) throw OptionError("scattered_patches", "must be >= 0");
   if (images) imaging.Check();
   if (!(camera_scale >= 0.05 && camera_scale <= 4)) throw OptionError("camera_scale", "must be in [0.05, 4]");
+  changes.Check();
 }
 
 std::vector<std::string> SurveyPresetNames() { return {"demo", "mono", "curtiss"}; }
@@ -267,6 +268,7 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   truth.x_gM = x_gM.ToVector();
   truth.x_s_cT = x_s_cT.ToVector();
   truth.objects = PlaceObjects(o, cad, axes, fmin, umin, s_centre, keys, x_gM, man, x_s_cT, rng);
+  if (o.changes.any()) ApplyFoulingChanges(truth.objects, cad, axes.forward, o.changes);
   for (std::size_t i = 0; i < truth.objects.size(); ++i) {
     out.object_meshes.push_back(MakeObjectMesh(truth.objects[i], o.seed * 1000003 + i));
   }

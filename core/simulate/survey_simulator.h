@@ -14,6 +14,7 @@
 
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
+#include "simulate/fouling_changes.h"
 #include "simulate/hull_forms.h"
 #include "simulate/image_renderer.h"
 #include "simulate/survey_plan.h"
@@ -83,6 +84,8 @@ struct SurveySimulationOptions {
 
   ObjectSet objects = ObjectSet::kDemo;
   int scattered_patches = 0;
+  // The second survey of a pair: the placed objects changed (fouling_changes.h).
+  FoulingChanges changes;
   bool write_landmarks = false;  // landmarks.csv with noisy initial positions
 
   // Camera images (bundle version 2): rendered when the bundle is written.

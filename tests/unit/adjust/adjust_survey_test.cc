@@ -114,6 +114,38 @@ TEST_P(AdjustSurvey, FractionOnSurfaceSettles) {
 
 INSTANTIATE_TEST_SUITE_P(Presets, AdjustSurvey, ::testing::Values("demo", "mono"));
 
+// The sigma of h is honest: over the hull features of the simulated survey,
+// the z-scores (h - h_true) / sigma_h have a standard deviation near 1.
+TEST_P(AdjustSurvey, DeviationSigmaIsHonest) {
+  const AdjustmentResult& r = R(SurfaceModel::kMaxMixture).result;
+  const SurveyBundle& b = Get(GetParam()).survey.bundle;
+  ASSERT_TRUE(b.truth);
+  std::map<std::int64_t, const TrueLandmark*> truth;
+  for (const auto& l : b.truth->landmarks) truth[l.landmark] = &l;
+  double sum = 0, sum2 = 0, sigma_sum = 0;
+  int n = 0, with_sigma = 0;
+  for (const auto& l : r.landmarks) {
+    const auto it = truth.find(l.id);
+    if (it == truth.end() || !it->second->object.empty()) continue;
+    if (!std::isfinite(l.sigma_h)) continue;
+    ++with_sigma;
+    ASSERT_GT(l.sigma_h, 0);
+    const double z = (l.deviation - it->second->deviation) / l.sigma_h;
+    sum += z;
+    sum2 += z * z;
+    sigma_sum += l.sigma_h;
+    ++n;
+  }
+  ASSERT_GT(n, 500);
+  const double mean = sum / n, sd = std::sqrt(sum2 / n - mean * mean);
+  std::printf("[%s] %s covariance in %.2f s: %d hull features, sigma_h mean %.4f m, z mean %.3f, z std %.3f\n",
+              GetParam().c_str(), CovarianceMethodName(r.covariance_method), r.covariance_seconds, n, sigma_sum / n,
+              mean, sd);
+  EXPECT_EQ(r.covariance_method, CovarianceMethod::kFull) << r.covariance_note;
+  EXPECT_GE(sd, 0.8);
+  EXPECT_LE(sd, 1.25);
+}
+
 TEST(AdjustResults, WriteReadRoundTrip) {
   const ModelRun& r = Get("demo").runs.at(SurfaceModel::kMaxMixture);
   const std::string dir = (std::filesystem::path(::testing::TempDir()) / "hi_adjust_results").string();
@@ -123,12 +155,15 @@ TEST(AdjustResults, WriteReadRoundTrip) {
   for (std::size_t i = 0; i < back.landmarks.size(); ++i) {
     EXPECT_EQ(back.landmarks[i].p, r.result.landmarks[i].p);
     EXPECT_EQ(back.landmarks[i].label, r.result.landmarks[i].label);
+    EXPECT_EQ(back.landmarks[i].sigma_h, r.result.landmarks[i].sigma_h);
+    EXPECT_EQ(back.landmarks[i].covariance, r.result.landmarks[i].covariance);
   }
   EXPECT_EQ(back.poses, r.result.poses);
   EXPECT_EQ(back.x_gM, r.result.x_gM);
   EXPECT_EQ(back.iterations.size(), r.result.iterations.size());
   EXPECT_EQ(back.dvl.size(), r.result.dvl.size());
   EXPECT_EQ(back.options.model, SurfaceModel::kMaxMixture);
+  EXPECT_EQ(back.covariance_method, r.result.covariance_method);
 }
 
 TEST(AdjustJob, CancelStopsWithCancelled) {

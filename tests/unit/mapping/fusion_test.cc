@@ -94,18 +94,26 @@ TEST(Fusion, FastEqualsThePapersLoopsBitForBit) {
     const MeshIndex index(s.cad);
     const RefinedMesh refined = RefineMesh(s.cad, index, DepartureRegion(shapes, cams, index, o, p), o.refine_edge);
     const TriangleMesh& prior = refined.mesh;
+    const PointConeTree tree(prior.vertices);
+    FusionRule mean;
+    mean.keep_peaks = false;
+    const FusionResult brute_mean = FuseShapesBruteForce(prior, cams, shapes, o.fusion_radius, mean);
+    const FusionResult fast_mean = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, mean, p);
+    EXPECT_EQ(fast_mean.count, brute_mean.count);
+    EXPECT_EQ(fast_mean.vertices, brute_mean.vertices);
     const FusionResult brute = FuseShapesBruteForce(prior, cams, shapes, o.fusion_radius);
-    const FusionResult fast = FuseShapes(prior, PointConeTree(prior.vertices), cams, shapes, o.fusion_radius, p);
+    const FusionResult fast = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, FusionRule{}, p);
     EXPECT_GT(brute.hits, 500u);
     EXPECT_EQ(fast.hits, brute.hits);
     EXPECT_EQ(fast.count, brute.count);
+    EXPECT_EQ(fast.support, brute.support);
     EXPECT_EQ(fast.vertices, brute.vertices);
-    // A fused vertex is the mean of its hits: on the disk's top 0.1 m below
-    // the CAD (the features' height), elsewhere near the plane.
+    // A fused vertex rests on its supported hits: on the disk's top 0.1 m
+    // below the CAD (the features' height), elsewhere near the plane.
     const MeshIndex cad(s.cad);
     int on_top = 0;
     for (std::size_t v = 0; v < prior.num_vertices(); ++v) {
-      if (fast.count[v] == 0) {
+      if (fast.support[v] == 0) {
         EXPECT_EQ(fast.vertices[v], prior.vertices[v]);
         continue;
       }
@@ -193,7 +201,8 @@ TEST(Mapper, ObjectInspectionAndCaching) {
   EXPECT_NEAR(obj.mean_height, kHeight, 0.015);
   EXPECT_EQ(obj.side, HullSide::kBottom);
   EXPECT_NEAR(obj.distance_from_bow, 2.0, 0.02);  // the bow is x = 4
-  EXPECT_EQ(obj.station, 10);                     // 20 stations of 0.2 m
+  // 20 stations of 0.2 m: the disk's centre lies on the boundary of 9 and 10.
+  EXPECT_TRUE(obj.station == 9 || obj.station == 10) << obj.station;
   EXPECT_GT(obj.num_features, 50);
   EXPECT_EQ(obj.num_views, 9);
   EXPECT_EQ(obj.keyframes.front(), 10);

@@ -418,9 +418,10 @@ void FastFusionEqualsThePapersLoops(const std::string& preset) {
   const TriangleMesh& prior = *mapper.prior_mesh();
   std::vector<Pose> x_M_cT;
   for (const auto& k : mapper.input().keyframes) x_M_cT.push_back(mapper.input().x_gM.Inverse() * k.x_g_cT);
-  const FusionResult brute = FuseShapesBruteForce(prior, x_M_cT, last.keyframes, last.options.fusion_radius);
+  const FusionRule rule{last.options.fusion_keep_peaks, last.options.fusion_support, last.options.fusion_peak_band};
+  const FusionResult brute = FuseShapesBruteForce(prior, x_M_cT, last.keyframes, last.options.fusion_radius, rule);
   const FusionResult fast =
-      FuseShapes(prior, PointConeTree(prior.vertices), x_M_cT, last.keyframes, last.options.fusion_radius, p);
+      FuseShapes(prior, PointConeTree(prior.vertices), x_M_cT, last.keyframes, last.options.fusion_radius, rule, p);
   ASSERT_EQ(fast.vertices.size(), brute.vertices.size());
   EXPECT_EQ(fast.hits, brute.hits);
   EXPECT_GT(fast.hits, 1000u);

@@ -39,9 +39,12 @@ TEST(MappingOptions, DefaultsPassAndEachBadFieldIsNamed) {
       {"dbscan_eps", [](MappingOptions& o) { o.dbscan_eps = -1; }},
       {"dbscan_min_points", [](MappingOptions& o) { o.dbscan_min_points = 0; }},
       {"fusion_radius", [](MappingOptions& o) { o.fusion_radius = 0; }},
+      {"fusion_support", [](MappingOptions& o) { o.fusion_support = 0; }},
+      {"fusion_peak_band", [](MappingOptions& o) { o.fusion_peak_band = -0.001; }},
       {"refine_edge", [](MappingOptions& o) { o.refine_edge = 0.001; }},
       {"refine_threshold", [](MappingOptions& o) { o.refine_threshold = -1; }},
       {"refine_margin", [](MappingOptions& o) { o.refine_margin = 5; }},
+      {"significance_k", [](MappingOptions& o) { o.significance_k = 0; }},
       {"object_min_height", [](MappingOptions& o) { o.object_min_height = 0; }},
       {"object_min_area", [](MappingOptions& o) { o.object_min_area = -1; }},
       {"stations", [](MappingOptions& o) { o.stations = 0; }},
@@ -336,6 +339,39 @@ TEST(MovingAverage, IsTheMeanOfTheHitsAndForgetsThePrior) {
   one.value = Eigen::Vector3d(7, 7, 7);
   one.Add(Eigen::Vector3d(0.1, 0.2, 0.3));
   EXPECT_EQ(one.value, Eigen::Vector3d(0.1, 0.2, 0.3));
+}
+
+// ---- the peak-keeping rule ---------------------------------------------------------------
+
+TEST(CombineHits, KeepsASupportedPeakAndIgnoresALoneOutlier) {
+  const Eigen::Vector3d v(1, 2, 0), n(0, 0, -1);  // a bottom vertex, outward normal down
+  auto at = [&](double h) { return Eigen::Vector3d(v + h * n); };
+  FusionRule rule;  // keep peaks, support 2, band 5 mm
+  int support = 0;
+  // Two views reach a narrow 0.18 m peak over this vertex, four others land
+  // lower on its flank: the mean (eq. 15) flattens it, the rule keeps it.
+  const std::vector<Eigen::Vector3d> flank = {at(0.18), at(0.12), at(0.179), at(0.10), at(0.09), at(0.11)};
+  EXPECT_NEAR(CombineHits(flank, v, n, rule, &support).z(), -0.179, 1e-12);
+  EXPECT_EQ(support, 2);
+  FusionRule mean;
+  mean.keep_peaks = false;
+  EXPECT_NEAR(CombineHits(flank, v, n, mean, &support).z(), -(0.18 + 0.12 + 0.179 + 0.10 + 0.09 + 0.11) / 6, 1e-12);
+  EXPECT_EQ(support, 6);
+  // One wrong hit far above the rest cannot raise the vertex: it rests on
+  // the second highest and the hits within the band below it.
+  const std::vector<Eigen::Vector3d> wrong = {at(0.002), at(0.40), at(-0.001), at(0.001)};
+  EXPECT_NEAR(CombineHits(wrong, v, n, rule, &support).z(), -(0.002 - 0.001 + 0.001) / 3, 1e-12);
+  EXPECT_EQ(support, 4);
+  // Noise about the hull: the band averages what lies just below the
+  // second highest hit.
+  const std::vector<Eigen::Vector3d> noise = {at(0.003), at(-0.002), at(0.001), at(0.004), at(-0.004)};
+  EXPECT_NEAR(CombineHits(noise, v, n, rule, &support).z(), -(0.003 + 0.001 - 0.002) / 3, 1e-12);
+  EXPECT_EQ(support, 4);
+  // A vertex with one hit stays where it was.
+  EXPECT_EQ(CombineHits({at(0.15)}, v, n, rule, &support), v);
+  EXPECT_EQ(support, 0);
+  rule.support = 1;
+  EXPECT_NEAR(CombineHits({at(0.15)}, v, n, rule, &support).z(), -0.15, 1e-12);
 }
 
 // ---- hull zones and ratings ------------------------------------------------------------

@@ -1,5 +1,8 @@
 #include "simulate/foreign_objects.h"
 
+#include "base/error.h"
+#include "simulate/fouling_changes.h"
+
 #include <gtest/gtest.h>
 
 #include "support/test_meshes.h"
@@ -52,6 +55,58 @@ TEST_F(ForeignObjects, StripIsAChainOfOverlappingPatches) {
     EXPECT_GE(strip[i].height, 0.06);
     EXPECT_LE(strip[i].height, 0.18);
   }
+}
+
+// Half the clumps have a narrow peak: their top centimetre is a few
+// centimetres across, where a broad clump's is a wide plateau.
+TEST_F(ForeignObjects, SomeClumpsHaveNarrowPeaks) {
+  const TrueObject o = PlaceObject(index_, "patch", ObjectKind::kPatch, {0, 0, 0}, 0.15, 0.15);
+  int narrow = 0, broad = 0;
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    const TriangleMesh m = MakeObjectMesh(o, seed);
+    double reach = 0;  // how far from the axis the top stays within 1 cm of the peak
+    for (const auto& v : m.vertices) {
+      const double h = (v - o.center).dot(o.normal);
+      if (h >= o.height - 0.01) reach = std::max(reach, ((v - o.center) - h * o.normal).norm());
+    }
+    narrow += reach < 0.035;
+    broad += reach > 0.045;
+  }
+  EXPECT_GE(narrow, 5);
+  EXPECT_GE(broad, 5);
+  EXPECT_EQ(narrow + broad, 20);
+}
+
+TEST_F(ForeignObjects, FoulingChangesGrowRemoveAndAdd) {
+  std::vector<TrueObject> objs = {
+      PlaceObject(index_, "patch-1", ObjectKind::kPatch, {-2, 0, 0}, 0.15, 0.08),
+      PlaceObject(index_, "patch-2", ObjectKind::kPatch, {0, 0, 0}, 0.15, 0.10),
+      PlaceObject(index_, "cyl-1", ObjectKind::kCylinder, {2, 0, 0}, 0.15, 0.11),
+  };
+  const std::vector<TrueObject> before = objs;
+  FoulingChanges c;
+  c.grow = 1;
+  c.growth = 0.05;
+  c.remove = 1;
+  c.add = 2;
+  ApplyFoulingChanges(objs, index_, Eigen::Vector3d::UnitX(), c);
+  ASSERT_EQ(objs.size(), 4u);
+  EXPECT_EQ(objs[0].id, "patch-1");
+  EXPECT_NEAR(objs[0].height, 0.13, 1e-12);
+  EXPECT_EQ(objs[1].id, "patch-2");
+  EXPECT_EQ(objs[1].height, before[1].height);
+  EXPECT_EQ(objs[1].center, before[1].center);
+  EXPECT_EQ(objs[2].id, "new-1");
+  EXPECT_EQ(objs[3].id, "new-2");
+  for (int k = 2; k < 4; ++k) {
+    EXPECT_NEAR(objs[static_cast<std::size_t>(k)].center.z(), 0.0, 1e-12);  // on the surface
+    EXPECT_NEAR(objs[static_cast<std::size_t>(k)].height, c.new_height, 1e-12);
+    for (const auto& b : before) {
+      EXPECT_GT((objs[static_cast<std::size_t>(k)].center - b.center).norm(), 0.5) << b.id;
+    }
+  }
+  c.growth = 0;
+  EXPECT_THROW(ApplyFoulingChanges(objs, index_, Eigen::Vector3d::UnitX(), c), OptionError);
 }
 
 }  // namespace

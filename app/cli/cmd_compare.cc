@@ -1,0 +1,76 @@
+// hullinspect-cli compare: change between two surveys of one hull.
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/args.h"
+#include "cli/commands.h"
+#include "geometry/mesh_io.h"
+#include "mapping/survey_compare.h"
+
+namespace hull::cli {
+namespace {
+
+const char* kHelp = R"(usage: hullinspect-cli compare RESULTS_A RESULTS_B --out DIR [options]
+
+Change between two surveys of the same hull, both mapped against the same
+CAD mesh: the per-vertex change in height on survey B's model (B's deviation
+minus A's at the same CAD point, significant where |change| > k sigma with
+sigma from both results' per-vertex sigmas), and the detected objects
+matched by position and classed new, removed, grown, shrunk or unchanged.
+RESULTS_A/B: mapping results folders ('hullinspect-cli map') or pipeline
+results folders ('hullinspect-cli run', their mapping/ is used). Writes
+DIR/model.ply (scalars change, change_sigma, change_significant),
+DIR/objects.csv and DIR/compare.json; DIR is replaced as a whole.
+
+options:
+  --out DIR            output folder (required)
+  --mesh PATH          the CAD mesh (default: the one A's mapping.json names)
+  --mesh-scale S       scale applied to --mesh on load (default 1)
+  --match-radius M     objects within M of each other are the same (default 0.3)
+  --change M           grown / shrunk when the max height changes by M (default 0.03)
+  --k K                significance factor (default 1.96)
+)";
+
+std::string MappingFolder(const std::string& results) {
+  namespace fs = std::filesystem;
+  if (fs::exists(fs::path(results) / "model.ply")) return results;
+  if (fs::exists(fs::path(results) / "mapping" / "model.ply")) return (fs::path(results) / "mapping").string();
+  throw UsageError("'" + results + "' holds neither mapping results nor a pipeline's mapping/");
+}
+
+}  // namespace
+
+int RunCompare(const CommandArgs& argv) {
+  Args a(argv, {"help"});
+  if (a.Has("help")) {
+    std::fputs(kHelp, stdout);
+    return kExitOk;
+  }
+  a.AllowOnly({"out", "mesh", "mesh-scale", "match-radius", "change", "k"});
+  if (a.positionals().size() != 2) throw UsageError("expected two results folders, A and B");
+  if (!a.Has("out")) throw UsageError("--out DIR is required");
+  SurveyCompareOptions o;
+  o.match_radius = a.GetDouble("match-radius", o.match_radius);
+  o.change_threshold = a.GetDouble("change", o.change_threshold);
+  o.significance_k = a.GetDouble("k", o.significance_k);
+  o.Check();
+  const MappingResultsOnDisk ra = ReadMappingResultsForCompare(MappingFolder(a.positionals()[0]));
+  const MappingResultsOnDisk rb = ReadMappingResultsForCompare(MappingFolder(a.positionals()[1]));
+  const std::string mesh = a.Get("mesh", ra.mesh_path);
+  if (mesh.empty()) throw UsageError("A's mapping.json names no mesh: give --mesh");
+  MeshLoadOptions lo;
+  lo.scale = a.GetDouble("mesh-scale", 1.0);
+  const TriangleMesh cad = LoadMesh(mesh, lo);
+  const SurveyComparison c = CompareSurveys(cad, ra.model, ra.objects, rb.model, rb.objects, o);
+  WriteSurveyComparison(c, a.Get("out"));
+  std::printf("%zu of %zu vertices changed significantly\n", c.significant_vertices, c.model.num_vertices());
+  std::printf("%-10s %-8s %-8s %9s %9s %9s\n", "change", "A", "B", "height A", "height B", "change");
+  for (const ObjectChange& x : c.objects) {
+    std::printf("%-10s %-8s %-8s %9.3f %9.3f %+9.3f\n", ObjectChangeKindName(x.kind),
+                x.id_a.empty() ? "-" : x.id_a.c_str(), x.id_b.empty() ? "-" : x.id_b.c_str(), x.height_a, x.height_b,
+                x.change);
+  }
+  return kExitOk;
+}
+
+}  // namespace hull::cli

@@ -1,0 +1,146 @@
+#include "adjust/landmark_covariance.h"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "base/error.h"
+
+namespace hull {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const Eigen::Matrix3d kUnknown = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+
+// (J_l^T J_l)^-1 over the residual blocks of one landmark, other blocks fixed.
+Eigen::Matrix3d Conditional(const ceres::Problem& problem, double* block) {
+  std::vector<ceres::ResidualBlockId> ids;
+  problem.GetResidualBlocksForParameterBlock(block, &ids);
+  Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
+  std::vector<double*> params;
+  for (const ceres::ResidualBlockId id : ids) {
+    params.clear();
+    problem.GetParameterBlocksForResidualBlock(id, &params);
+    const int n = problem.GetCostFunctionForResidualBlock(id)->num_residuals();
+    std::vector<double> residuals(static_cast<std::size_t>(n));
+    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> J(n, 3);
+    std::vector<double*> jacobians(params.size(), nullptr);
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      if (params[i] == block) jacobians[i] = J.data();
+    }
+    double cost = 0;
+    if (!problem.EvaluateResidualBlock(id, true, &cost, residuals.data(), jacobians.data())) continue;
+    info += J.transpose() * J;
+  }
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(info);
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0)) return kUnknown;
+  const Eigen::Matrix3d c = ldlt.solve(Eigen::Matrix3d::Identity());
+  return 0.5 * (c + c.transpose());
+}
+
+// sigma_h from the joint covariance of [model, landmark] and the surface
+// residual's Jacobian (tangent space), normalised so that dh/dl is unit.
+void JointSigmas(const ceres::Problem& problem, const ceres::Covariance& covariance, const std::vector<double*>& blocks,
+                 double* model, const std::vector<ceres::ResidualBlockId>& surface, LandmarkCovariances& out) {
+  const int tm = problem.ParameterBlockTangentSize(model);
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor mm(tm, tm);
+  if (!covariance.GetCovarianceBlockInTangentSpace(model, model, mm.data())) return;
+  std::vector<double*> params;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!surface[i]) continue;
+    params.clear();
+    problem.GetParameterBlocksForResidualBlock(surface[i], &params);
+    if (params.size() != 2 || params[0] != model || params[1] != blocks[i]) continue;
+    // h is the first residual (scaled by 1 / sigma of the chosen label).
+    const int nr = problem.GetCostFunctionForResidualBlock(surface[i])->num_residuals();
+    RowMajor jm(nr, tm), jl(nr, 3);
+    std::vector<double> residuals(static_cast<std::size_t>(nr));
+    double* jacobians[2] = {jm.data(), jl.data()};
+    double cost = 0;
+    if (!problem.EvaluateResidualBlock(surface[i], false, &cost, residuals.data(), jacobians)) continue;
+    const double scale = jl.row(0).norm();
+    if (!(scale > 0)) continue;
+    RowMajor lm(3, tm);
+    if (!covariance.GetCovarianceBlockInTangentSpace(blocks[i], model, lm.data())) continue;
+    const Eigen::RowVector3d gl = jl.row(0) / scale;
+    const Eigen::RowVectorXd gm = jm.row(0) / scale;
+    const double v = gl * out.covariance[i] * gl.transpose() + 2.0 * (gl * lm * gm.transpose())(0, 0) +
+                     (gm * mm * gm.transpose())(0, 0);
+    out.sigma_h[i] = v >= 0 ? std::sqrt(v) : std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+}  // namespace
+
+const char* CovarianceMethodName(CovarianceMethod m) {
+  switch (m) {
+    case CovarianceMethod::kNone:
+      return "none";
+    case CovarianceMethod::kConditional:
+      return "conditional";
+    case CovarianceMethod::kFull:
+      return "full";
+  }
+  return "?";
+}
+
+CovarianceMethod ParseCovarianceMethod(const std::string& name) {
+  if (name == "none") return CovarianceMethod::kNone;
+  if (name == "conditional") return CovarianceMethod::kConditional;
+  if (name == "full") return CovarianceMethod::kFull;
+  throw OptionError("covariance", "expected none, conditional or full, got '" + name + "'");
+}
+
+LandmarkCovariances ComputeLandmarkCovariances(ceres::Problem& problem, const std::vector<double*>& blocks,
+                                               CovarianceMethod method, int num_threads, double* model_block,
+                                               const std::vector<ceres::ResidualBlockId>* surface) {
+  const auto t0 = Clock::now();
+  LandmarkCovariances out;
+  out.covariance.assign(blocks.size(), kUnknown);
+  out.sigma_h.assign(blocks.size(), std::numeric_limits<double>::quiet_NaN());
+  out.method = method;
+  const bool joint = model_block && surface && surface->size() == blocks.size() &&
+                     problem.HasParameterBlock(model_block) && !problem.IsParameterBlockConstant(model_block);
+  if (method == CovarianceMethod::kFull && !blocks.empty()) {
+    ceres::Covariance::Options co;
+    co.algorithm_type = ceres::SPARSE_QR;
+    co.num_threads = num_threads;
+    co.apply_loss_function = true;
+    ceres::Covariance covariance(co);
+    std::vector<std::pair<const double*, const double*>> pairs;
+    pairs.reserve(blocks.size());
+    for (double* b : blocks) pairs.emplace_back(b, b);
+    if (joint) {
+      pairs.emplace_back(model_block, model_block);
+      for (double* b : blocks) pairs.emplace_back(b, model_block);
+    }
+    if (covariance.Compute(pairs, &problem)) {
+      for (std::size_t i = 0; i < blocks.size(); ++i) {
+        Eigen::Matrix<double, 3, 3, Eigen::RowMajor> c;
+        if (covariance.GetCovarianceBlock(blocks[i], blocks[i], c.data()))
+          out.covariance[i] = 0.5 * (c + c.transpose());
+      }
+      if (joint) JointSigmas(problem, covariance, blocks, model_block, *surface, out);
+    } else {
+      out.method = CovarianceMethod::kConditional;
+      out.note = "the full covariance failed (rank-deficient Jacobian); landmark-conditional covariances instead";
+    }
+  }
+  if (out.method == CovarianceMethod::kConditional) {
+    for (std::size_t i = 0; i < blocks.size(); ++i) out.covariance[i] = Conditional(problem, blocks[i]);
+  }
+  out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return out;
+}
+
+double DeviationSigma(const Eigen::Matrix3d& covariance, const Eigen::Vector3d& normal) {
+  const double v = normal.dot(covariance * normal);
+  return v >= 0 ? std::sqrt(v) : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace hull

@@ -1,0 +1,62 @@
+// Per-landmark 3-D covariance from the adjustment, and its propagation to
+// the signed distance h (an M3C2-style level of detection: a deviation is
+// significant when |h| > k sigma_h).
+//
+// Two ways, chosen by AdjustmentOptions::covariance:
+//  - kFull: Ceres' Covariance on the landmark blocks (sparse QR of the whole
+//    Jacobian at the solution, robust losses applied): the marginal of each
+//    landmark with the uncertainty of poses, servo, extrinsic and model pose
+//    folded in. Falls back to kConditional when the Jacobian is rank
+//    deficient (the fallback is reported).
+//  - kConditional: each landmark's own information (its residual blocks'
+//    J^T J with every other block held fixed), inverted: cheap (linear in
+//    the observations) but optimistic, since pose errors are ignored.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace ceres {
+class Problem;
+namespace internal {
+class ResidualBlock;
+}
+using ResidualBlockId = internal::ResidualBlock*;  // as ceres/problem.h declares it
+}  // namespace ceres
+
+namespace hull {
+
+enum class CovarianceMethod { kNone, kConditional, kFull };
+const char* CovarianceMethodName(CovarianceMethod m);
+// "none", "conditional" or "full"; throws OptionError("covariance") otherwise.
+CovarianceMethod ParseCovarianceMethod(const std::string& name);
+
+struct LandmarkCovariances {
+  std::vector<Eigen::Matrix3d> covariance;  // per block, in the blocks' frame (g), symmetric; NaN when unavailable
+  // Per block, sigma of h from the joint covariance of the landmark and the
+  // model pose (kFull with a surface residual); NaN where not computed.
+  std::vector<double> sigma_h;
+  CovarianceMethod method = CovarianceMethod::kNone;  // what was used in the end
+  std::string note;                                   // why a fallback happened, if it did
+  double seconds = 0;
+};
+
+// blocks: the landmark parameter blocks (3 doubles each) of `problem`, at
+// the solution. num_threads > 0. With model_block (the model pose) and
+// surface (per block, the residual block of its surface constraint, whose
+// parameters are the model pose and the landmark; null where none), kFull
+// also gives sigma_h: h moves with the landmark *relative to the model*,
+// so the common motion of both (the survey's drift, which the landmark's
+// marginal alone is dominated by) cancels. The gradient of h is the
+// surface residual's Jacobian over [model, landmark] scaled so that its
+// landmark part has unit length (dh/dl is the unit normal).
+LandmarkCovariances ComputeLandmarkCovariances(ceres::Problem& problem, const std::vector<double*>& blocks,
+                                               CovarianceMethod method, int num_threads, double* model_block = nullptr,
+                                               const std::vector<ceres::ResidualBlockId>* surface = nullptr);
+
+// sigma_h = sqrt(n^T Sigma n) for the unit surface normal n (same frame as
+// Sigma); NaN when Sigma is.
+double DeviationSigma(const Eigen::Matrix3d& covariance, const Eigen::Vector3d& normal);
+
+}  // namespace hull

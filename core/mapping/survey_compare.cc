@@ -1,0 +1,228 @@
+#include "mapping/survey_compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <stdexcept>
+
+#include "base/atomic_directory.h"
+#include "base/csv.h"
+#include "base/error.h"
+#include "base/file_io.h"
+#include "base/json.h"
+#include "geometry/mesh_index.h"
+#include "geometry/mesh_io.h"
+#include "geometry/point_index.h"
+
+namespace hull {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::vector<double>& Deviation(const TriangleMesh& m, const char* which) {
+  const std::vector<double>* d = m.FindScalar("deviation");
+  if (!d || d->size() != m.num_vertices()) {
+    throw std::invalid_argument(std::string("CompareSurveys: model ") + which + " has no per-vertex deviation");
+  }
+  return *d;
+}
+
+double SigmaAt(const std::vector<double>* sigma, std::size_t i) {
+  return sigma && i < sigma->size() ? (*sigma)[i] : std::numeric_limits<double>::quiet_NaN();
+}
+
+Eigen::Vector3d Vec3(const JsonReader& r, const char* key) {
+  const std::vector<double> v = r.Numbers(key, 3);
+  return {v[0], v[1], v[2]};
+}
+
+}  // namespace
+
+void SurveyCompareOptions::Check() const {
+  if (!(std::isfinite(match_radius) && match_radius > 0)) throw OptionError("match_radius", "must be positive (m)");
+  if (!(std::isfinite(change_threshold) && change_threshold > 0)) {
+    throw OptionError("change_threshold", "must be positive (m)");
+  }
+  if (!(std::isfinite(significance_k) && significance_k > 0)) throw OptionError("significance_k", "must be positive");
+}
+
+const char* ObjectChangeKindName(ObjectChangeKind k) {
+  switch (k) {
+    case ObjectChangeKind::kNew:
+      return "new";
+    case ObjectChangeKind::kRemoved:
+      return "removed";
+    case ObjectChangeKind::kGrown:
+      return "grown";
+    case ObjectChangeKind::kShrunk:
+      return "shrunk";
+    case ObjectChangeKind::kUnchanged:
+      return "unchanged";
+  }
+  return "?";
+}
+
+SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& model_a,
+                                const std::vector<DetectedObject>& objects_a, const TriangleMesh& model_b,
+                                const std::vector<DetectedObject>& objects_b, const SurveyCompareOptions& o) {
+  o.Check();
+  const std::vector<double>& dev_a = Deviation(model_a, "A");
+  const std::vector<double>& dev_b = Deviation(model_b, "B");
+  const std::vector<double>* sigma_a = model_a.FindScalar("sigma");
+  const std::vector<double>* sigma_b = model_b.FindScalar("sigma");
+  TriangleMesh cad_copy = cad;
+  cad_copy.ComputeNormals();
+  const MeshIndex index(cad_copy);
+
+  // A's height field, keyed by where each vertex stands on the CAD.
+  std::vector<Eigen::Vector3d> feet_a(model_a.num_vertices());
+  for (std::size_t i = 0; i < feet_a.size(); ++i) feet_a[i] = index.Closest(model_a.vertices[i]).point;
+  const PointIndex a_index(feet_a);
+
+  SurveyComparison out;
+  out.model = model_b;
+  const std::size_t nb = model_b.num_vertices();
+  std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
+  for (std::size_t i = 0; i < nb; ++i) {
+    const Eigen::Vector3d foot = index.Closest(model_b.vertices[i]).point;
+    const auto nearest = a_index.NearestOne(foot);
+    const std::size_t j = static_cast<std::size_t>(std::max(0, nearest.first));
+    change[i] = dev_b[i] - dev_a[j];
+    const double sa = SigmaAt(sigma_a, j), sb = SigmaAt(sigma_b, i);
+    sigma[i] = std::sqrt(sa * sa + sb * sb);
+    if (std::isfinite(sigma[i]) && std::abs(change[i]) > o.significance_k * sigma[i]) {
+      significant[i] = 1;
+      ++out.significant_vertices;
+    }
+  }
+  out.model.SetScalar("change", change);
+  out.model.SetScalar("change_sigma", sigma);
+  out.model.SetScalar("change_significant", significant);
+
+  // Objects: closest pairs first, within match_radius.
+  struct Pair {
+    double d;
+    std::size_t a, b;
+  };
+  std::vector<Pair> pairs;
+  for (std::size_t a = 0; a < objects_a.size(); ++a) {
+    for (std::size_t b = 0; b < objects_b.size(); ++b) {
+      const double d = (objects_a[a].centroid_m - objects_b[b].centroid_m).norm();
+      if (d <= o.match_radius) pairs.push_back({d, a, b});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) {
+    if (x.d != y.d) return x.d < y.d;
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  std::vector<int> match_of_b(objects_b.size(), -1);
+  std::vector<char> a_used(objects_a.size(), 0);
+  for (const Pair& p : pairs) {
+    if (a_used[p.a] || match_of_b[p.b] >= 0) continue;
+    a_used[p.a] = 1;
+    match_of_b[p.b] = static_cast<int>(p.a);
+  }
+  std::vector<ObjectChange> added;
+  for (std::size_t b = 0; b < objects_b.size(); ++b) {
+    const DetectedObject& ob = objects_b[b];
+    ObjectChange c;
+    c.id_b = ob.id;
+    c.centroid = ob.centroid_m;
+    c.height_b = ob.max_height;
+    if (match_of_b[b] < 0) {
+      c.kind = ObjectChangeKind::kNew;
+      c.change = c.height_b;
+      added.push_back(c);
+      continue;
+    }
+    const DetectedObject& oa = objects_a[static_cast<std::size_t>(match_of_b[b])];
+    c.id_a = oa.id;
+    c.height_a = oa.max_height;
+    c.change = c.height_b - c.height_a;
+    c.kind = c.change >= o.change_threshold    ? ObjectChangeKind::kGrown
+             : c.change <= -o.change_threshold ? ObjectChangeKind::kShrunk
+                                               : ObjectChangeKind::kUnchanged;
+    out.objects.push_back(c);
+  }
+  out.objects.insert(out.objects.end(), added.begin(), added.end());
+  for (std::size_t a = 0; a < objects_a.size(); ++a) {
+    if (a_used[a]) continue;
+    ObjectChange c;
+    c.kind = ObjectChangeKind::kRemoved;
+    c.id_a = objects_a[a].id;
+    c.centroid = objects_a[a].centroid_m;
+    c.height_a = objects_a[a].max_height;
+    c.change = -c.height_a;
+    out.objects.push_back(c);
+  }
+  return out;
+}
+
+MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir) {
+  MappingResultsOnDisk out;
+  const fs::path d(dir);
+  MeshLoadOptions lo;  // as written: no welding, no reorientation
+  lo.weld = false;
+  lo.orient_outward = false;
+  const std::string mpath = (d / "model.ply").string();
+  out.model = LoadMesh(mpath, lo);
+  if (!out.model.FindScalar("deviation")) {
+    throw InputError({mpath, 0, 0, "deviation"}, "the model has no per-vertex deviation");
+  }
+  const std::string opath = (d / "objects.json").string();
+  const Json odoc = Json::Parse(ReadFileToString(opath), opath);
+  const JsonReader root(odoc, opath);
+  const Json& items = root.Required("objects");
+  if (!items.is_array()) root.Fail(items, "objects", "expected an array");
+  for (std::size_t i = 0; i < items.items().size(); ++i) {
+    const JsonReader r(items.items()[i], opath, "objects[" + std::to_string(i) + "]");
+    DetectedObject o;
+    o.id = r.String("id");
+    o.centroid_m = Vec3(r, "centroid");
+    o.max_height = r.Number("max_height");
+    out.objects.push_back(std::move(o));
+  }
+  const std::string jpath = (d / "mapping.json").string();
+  if (fs::exists(jpath)) {
+    const Json jdoc = Json::Parse(ReadFileToString(jpath), jpath);
+    const JsonReader j(jdoc, jpath);
+    if (const auto in = j.OptionalObject("inputs")) out.mesh_path = in->OptionalString("mesh").value_or("");
+  }
+  return out;
+}
+
+void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_dir) {
+  WriteDirectoryAtomic(final_dir, [&](const std::string& dir) {
+    MeshSaveOptions ply;
+    ply.binary = true;
+    SaveMesh(c.model, (fs::path(dir) / "model.ply").string(), ply);
+    CsvWriter csv({"change", "id_a", "id_b", "x", "y", "z", "height_a", "height_b", "height_change"});
+    Json list = Json::Array();
+    for (const ObjectChange& o : c.objects) {
+      csv.Add(ObjectChangeKindName(o.kind)).Add(o.id_a).Add(o.id_b);
+      for (int k = 0; k < 3; ++k) csv.Add(o.centroid[k]);
+      csv.Add(o.height_a).Add(o.height_b).Add(o.change);
+      csv.EndRow();
+      Json j = Json::Object();
+      j.Set("change", ObjectChangeKindName(o.kind));
+      j.Set("id_a", o.id_a);
+      j.Set("id_b", o.id_b);
+      j.Set("centroid", Json::ArrayOf(std::vector<double>{o.centroid.x(), o.centroid.y(), o.centroid.z()}));
+      j.Set("height_a", o.height_a);
+      j.Set("height_b", o.height_b);
+      j.Set("height_change", o.change);
+      list.Push(std::move(j));
+    }
+    WriteFileAtomic((fs::path(dir) / "objects.csv").string(), csv.text());
+    Json root = Json::Object();
+    root.Set("format", "hull-compare");
+    root.Set("version", 1);
+    root.Set("vertices", static_cast<std::int64_t>(c.model.num_vertices()));
+    root.Set("significant_vertices", static_cast<std::int64_t>(c.significant_vertices));
+    root.Set("objects", std::move(list));
+    WriteFileAtomic((fs::path(dir) / "compare.json").string(), root.Dump());
+  });
+}
+
+}  // namespace hull

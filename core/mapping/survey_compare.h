@@ -1,0 +1,69 @@
+// Change between two surveys of one hull: both mapped against the same CAD
+// mesh, the per-vertex change in height on survey B's model (with its
+// significance where both results carry a per-vertex sigma), and the
+// detected objects matched by position and classed new, removed, grown,
+// shrunk or unchanged.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "geometry/triangle_mesh.h"
+#include "mapping/detected_objects.h"
+
+namespace hull {
+
+struct SurveyCompareOptions {
+  // Objects of A and B whose centroids lie within this distance (m) are the
+  // same object (matched closest pair first).
+  double match_radius = 0.30;
+  // A matched object grew (shrank) when its max height rose (fell) by at
+  // least this much (m).
+  double change_threshold = 0.03;
+  // A vertex's change is significant when |change| > k sqrt(sigma_A^2 + sigma_B^2).
+  double significance_k = 1.96;
+  // Throws OptionError naming the field.
+  void Check() const;
+};
+
+enum class ObjectChangeKind { kNew, kRemoved, kGrown, kShrunk, kUnchanged };
+const char* ObjectChangeKindName(ObjectChangeKind k);  // "new", "removed", ...
+
+struct ObjectChange {
+  ObjectChangeKind kind = ObjectChangeKind::kUnchanged;
+  std::string id_a, id_b;                              // "" where absent
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // B's (A's when removed), in M
+  double height_a = 0, height_b = 0;                   // max heights (m); 0 where absent
+  double change = 0;                                   // height_b - height_a
+};
+
+struct SurveyComparison {
+  // B's model with vertex scalars "change" (m, B's deviation minus A's at
+  // the same CAD point), "change_sigma" (m; NaN without sigmas) and
+  // "change_significant" (1 or 0).
+  TriangleMesh model;
+  std::vector<ObjectChange> objects;  // matched first (from the bow aft as B lists them), then new, then removed
+  std::size_t significant_vertices = 0;
+};
+
+// cad: the CAD mesh in M both results were mapped against; model_a/b: the
+// fused models with the scalar "deviation" (and optionally "sigma").
+// Throws std::invalid_argument when a model lacks "deviation".
+SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& model_a,
+                                const std::vector<DetectedObject>& objects_a, const TriangleMesh& model_b,
+                                const std::vector<DetectedObject>& objects_b, const SurveyCompareOptions& options);
+
+// A mapping results folder as the comparison needs it: model.ply with its
+// scalars and objects.json (id, centroid, max_height). Throws InputError.
+struct MappingResultsOnDisk {
+  TriangleMesh model;
+  std::vector<DetectedObject> objects;
+  std::string mesh_path;  // the CAD mapping.json names ("" if none)
+};
+MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir);
+
+// Writes DIR (replaced as a whole): model.ply (B's model with the change
+// scalars), objects.csv and compare.json.
+void WriteSurveyComparison(const SurveyComparison& c, const std::string& dir);
+
+}  // namespace hull
