@@ -4,6 +4,8 @@
 #include <stdexcept>
 
 #include "base/csv.h"
+#include "base/file_checks.h"
+#include "base/file_io.h"
 
 namespace hull::cli {
 
@@ -66,6 +68,16 @@ void Args::AllowOnly(const std::set<std::string>& allowed) const {
   for (const auto& [k, v] : values_) {
     if (k != "help" && !allowed.count(k)) throw UsageError("unknown option --" + k);
   }
+}
+
+void CheckOutputFolder(const std::string& path, const char* option) {
+  const std::string why = OutputLocationProblem(path, OutputKind::kFolder);
+  if (!why.empty()) throw UsageError(std::string(option) + " " + path + ": " + why);
+}
+
+void CheckOutputFile(const std::string& path, const char* option) {
+  const std::string why = OutputLocationProblem(path, OutputKind::kFile);
+  if (!why.empty()) throw UsageError(std::string(option) + " " + path + ": " + why);
 }
 
 }  // namespace hull::cli

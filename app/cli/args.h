@@ -45,4 +45,10 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Refuses an output location the results could not be written to (see
+// OutputLocationProblem in base/file_io.h) before any work: UsageError,
+// exit 2, "--out PATH: why".
+void CheckOutputFolder(const std::string& path, const char* option = "--out");
+void CheckOutputFile(const std::string& path, const char* option = "--out");
+
 }  // namespace hull::cli

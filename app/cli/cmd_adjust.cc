@@ -40,6 +40,13 @@ options:
   --quiet              no progress output
 The initial model pose (and the prior of eq. 8) is the GICP alignment of the
 DVL returns to the mesh (see 'align').
+
+The same input and options write the same files (wall times go to
+timing.json); with --threads 1 byte for byte, with more threads the last
+digits of the numbers may differ (Ceres sums in thread order). The bundle is
+validated first (docs/validation.md); an adjustment whose cost runs away
+stops with exit 3, naming the likely input. DIR is checked before any work
+(exit 2 when it cannot be written).
 )";
 
 }  // namespace
@@ -56,6 +63,7 @@ int RunAdjust(const CommandArgs& argv) {
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
+  CheckOutputFolder(out);
   AdjustmentOptions o;
   o.model = ParseSurfaceModel(a.Get("model", "max-mixture"));
   o.sigma0 = a.GetDouble("sigma0", o.sigma0);

@@ -124,6 +124,7 @@ int RunAlign(const CommandArgs& argv) {
     return kExitOk;
   }
   a.AllowOnly({"mesh", "mesh-scale", "no-guess", "out", "quiet"});
+  if (a.Has("out")) CheckOutputFile(a.Get("out"));
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle folder");
   const std::string dir = a.positionals()[0];
   const SurveyBundle bundle = OpenSurveyBundle(dir);

@@ -43,6 +43,7 @@ int RunExport(const CommandArgs& argv) {
     for (const std::string& f : formats) list += " " + f;
     throw UsageError("cannot write '" + MeshExtension(target) + "' files; the formats are" + list);
   }
+  CheckOutputFile(target);
   const fs::path results = a.positionals()[0];
   std::error_code ec;
   const fs::path model =

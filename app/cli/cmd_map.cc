@@ -58,6 +58,7 @@ int RunMap(const CommandArgs& argv) {
   if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
   const std::string results = a.positionals()[0];
   const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
+  if (a.Has("out")) CheckOutputFolder(out);  // the default lies in the results folder, read first
   MappingOptions o;
   o.tau = a.GetDouble("tau", o.tau);
   o.alpha = a.GetDouble("alpha", o.alpha);

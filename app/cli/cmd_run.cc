@@ -43,6 +43,7 @@ int RunPipeline(const CommandArgs& argv) {
                "min-points", "max-iterations", "threads", "quiet", "out"});
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
+  CheckOutputFolder(out);
   ConsoleProgress progress(a.Has("quiet"));
   std::string bundle_dir;
   if (a.Has("demo")) {

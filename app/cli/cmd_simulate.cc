@@ -144,6 +144,7 @@ int RunSimulate(const CommandArgs& argv) {
   if (!a.positionals().empty()) throw UsageError("unexpected argument '" + a.positionals()[0] + "'");
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
+  CheckOutputFolder(out);
   const std::string preset = a.Get("preset", "demo");
   if (preset.rfind("sonar-", 0) == 0 && a.Has("images")) {
     SonarImageSimulationOptions o = SonarImagePreset(preset.substr(6), static_cast<std::uint64_t>(a.GetInt("seed", 1)));

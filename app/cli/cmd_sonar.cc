@@ -118,6 +118,7 @@ int RunSonar(const CommandArgs& argv) {
   if (a.positionals().size() != 1) throw UsageError("expected one acoustic sequence folder");
   if (!a.Has("out")) throw UsageError("--out DIR is required");
   const std::string out = a.Get("out");
+  CheckOutputFolder(out);
 
   SonarRunOptions options;  // not const: from images, the image chain's
   options.ekf.init = ParseSonarInit(a.Get("init", "hypotheses"));

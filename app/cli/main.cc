@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "base/error.h"
+#include "base/printable.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "plugin/plugin_registry.h"
@@ -69,7 +70,8 @@ int main(int argc, char** argv) {
           hull::plugin::TakePluginOptions({argv + 2, argv + argc}, hull::plugin::Registry::Global());
       return c.run(args);
     } catch (const hull::cli::UsageError& e) {
-      std::fprintf(stderr, "hullinspect-cli %s: %s\n(see 'hullinspect-cli %s --help')\n", c.name, e.what(), c.name);
+      std::fprintf(stderr, "hullinspect-cli %s: %s\n(see 'hullinspect-cli %s --help')\n", c.name,
+                   hull::PrintableText(e.what(), hull::kMaxPrintedMessage).c_str(), c.name);
       return hull::cli::kExitUsage;
     } catch (const hull::InputError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
@@ -81,11 +83,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "cancelled\n");
       return hull::cli::kExitCancelled;
     } catch (const std::exception& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
+      std::fprintf(stderr, "error: %s\n", hull::PrintableText(e.what(), hull::kMaxPrintedMessage).c_str());
       return hull::cli::kExitFailure;
     }
   }
-  std::fprintf(stderr, "hullinspect-cli: unknown command '%s'\n\n", argv[1]);
+  std::fprintf(stderr, "hullinspect-cli: unknown command '%s'\n\n", hull::PrintableText(argv[1], 100).c_str());
   PrintUsage();
   return hull::cli::kExitUsage;
 }

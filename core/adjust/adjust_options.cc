@@ -44,6 +44,8 @@ void AdjustmentOptions::Check() const {
   if (!(outlier_sigmas > 0)) throw OptionError("outlier_sigmas", "must be positive");
   if (rejection_rounds < 0) throw OptionError("rejection_rounds", "must be >= 0");
   if (min_observations < 1) throw OptionError("min_observations", "must be at least 1");
+  if (!(max_solver_seconds >= 0)) throw OptionError("max_solver_seconds", "must be >= 0 (0: no limit)");
+  watch.Check();
   if (max_iterations < 1) throw OptionError("max_iterations", "must be at least 1");
   if (!(function_tolerance > 0 && gradient_tolerance > 0 && parameter_tolerance > 0)) {
     throw OptionError("tolerances", "must be positive");

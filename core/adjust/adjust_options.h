@@ -6,6 +6,7 @@
 #include <string>
 
 #include "adjust/landmark_covariance.h"
+#include "adjust/cost_watch.h"
 #include "geometry/mesh_index.h"
 
 namespace hull {
@@ -64,12 +65,19 @@ struct AdjustmentOptions {
   double function_tolerance = 1e-6;
   double gradient_tolerance = 1e-10;
   double parameter_tolerance = 1e-8;
+  // Wall-time limit of each solve (s); 0: none. With max_iterations, the
+  // cap a fuzz harness (or a GUI preview) puts on one adjustment.
+  double max_solver_seconds = 0;
   int num_threads = 0;  // 0: all cores
   bool verbose = false;
   // Landmark covariances after the solve (landmark_covariance.h): full (the
   // marginal, Ceres' sparse-QR covariance), conditional (poses held fixed;
   // cheap, optimistic) or none. Each landmark's sigma of h follows.
   CovarianceMethod covariance = CovarianceMethod::kFull;
+  // Runaway detection (cost_watch.h): a solve whose cost is not finite,
+  // absurd from the start or stalled while absurd ends with an InputError
+  // naming the likely input.
+  CostWatchOptions watch;
 
   // Throws OptionError naming the field: sigma0 > sigma1 > 0, positive
   // overrides or 0, max_iterations >= 1, ...

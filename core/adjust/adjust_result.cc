@@ -65,8 +65,6 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   Json sum = Json::Object();
   sum.Set("termination", r.termination);
   sum.Set("converged", r.converged);
-  sum.Set("seconds", r.seconds);
-  sum.Set("solver_seconds", r.solver_seconds);
   sum.Set("initial_cost", r.initial_cost);
   sum.Set("final_cost", r.final_cost);
   sum.Set("iterations", static_cast<int>(r.iterations.empty() ? 0 : r.iterations.back().iteration));
@@ -89,12 +87,22 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
     Json j = Json::Object();
     j.Set("iteration", it.iteration);
     j.Set("cost", it.cost);
-    j.Set("seconds", it.seconds);
     j.Set("fraction_on_surface", it.fraction_on_surface);
     its.Push(j);
   }
   root.Set("iterations", its);
   WriteFileAtomic(Path(dir, "adjustment.json"), root.Dump());
+  // Wall times apart, so that adjustment.json and the CSV files of the same
+  // run are byte-identical from one run to the next.
+  Json timing = Json::Object();
+  timing.Set("format", "hull-adjustment-timing");
+  timing.Set("version", 1);
+  timing.Set("seconds", r.seconds);
+  timing.Set("solver_seconds", r.solver_seconds);
+  Json per = Json::Array();
+  for (const auto& it : r.iterations) per.Push(Json(it.seconds));
+  timing.Set("iteration_seconds", per);
+  WriteFileAtomic(Path(dir, "timing.json"), timing.Dump());
 
   CsvWriter poses({"keyframe", "x", "y", "z", "roll", "pitch", "yaw", "servo"});
   for (std::size_t i = 0; i < r.poses.size(); ++i) {
@@ -152,7 +160,8 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
   const JsonReader sum = root.Object("summary");
   r.termination = sum.String("termination");
   r.converged = sum.Required("converged").as_bool();
-  r.seconds = sum.Number("seconds");
+  // Older results kept the wall times in adjustment.json.
+  r.seconds = sum.NumberOr("seconds", 0);
   r.solver_seconds = sum.NumberOr("solver_seconds", 0);
   r.initial_cost = sum.Number("initial_cost");
   r.final_cost = sum.Number("final_cost");
@@ -174,8 +183,17 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
   const Json& its = root.Required("iterations");
   for (std::size_t i = 0; i < its.items().size(); ++i) {
     JsonReader it(its.items()[i], jpath, "iterations[" + std::to_string(i) + "]");
-    r.iterations.push_back({static_cast<int>(it.Integer("iteration")), it.Number("cost"), it.Number("seconds"),
+    r.iterations.push_back({static_cast<int>(it.Integer("iteration")), it.Number("cost"), it.NumberOr("seconds", 0),
                             it.Number("fraction_on_surface")});
+  }
+  const std::string tpath = Path(dir, "timing.json");
+  if (fs::exists(tpath)) {
+    const Json tdoc = Json::Parse(ReadFileToString(tpath), tpath);
+    JsonReader t(tdoc, tpath);
+    r.seconds = t.Number("seconds");
+    r.solver_seconds = t.Number("solver_seconds");
+    const auto per = t.Numbers("iteration_seconds", static_cast<int>(r.iterations.size()));
+    for (std::size_t i = 0; i < per.size(); ++i) r.iterations[i].seconds = per[i];
   }
   {
     const std::string p = Path(dir, "poses.csv");

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <set>
 #include <thread>
@@ -20,8 +21,11 @@
 #include "adjust/factors/surface_factor.h"
 #include "adjust/factors/zpr_factor.h"
 #include "adjust/triangulation.h"
+#include "base/csv.h"
 #include "base/error.h"
 #include "geometry/mesh_index.h"
+#include "geometry/query_bounds.h"
+#include "survey/survey_plausibility.h"
 
 namespace hull {
 namespace {
@@ -63,14 +67,25 @@ double FractionOnSurface(const State& s, const MeshIndex& index, const Adjustmen
 class Observer : public ceres::IterationCallback {
  public:
   Observer(const State& s, const MeshIndex& index, const AdjustmentOptions& o, Progress& progress,
-           std::vector<IterationRecord>& log)
-      : s_(s), index_(index), o_(o), progress_(progress), log_(log), hints_(s.landmark.size(), -1) {}
+           std::vector<IterationRecord>& log, std::size_t num_residuals)
+      : s_(s),
+        index_(index),
+        o_(o),
+        progress_(progress),
+        log_(log),
+        hints_(s.landmark.size(), -1),
+        watch_(o.watch, num_residuals) {}
+
+  // Why the watch stopped the solve ("" when it did not).
+  const std::string& stop_reason() const { return stop_reason_; }
 
   // Rounds after outlier rejection continue the iteration count.
   void set_iteration_offset(int offset) { offset_ = offset; }
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
     if (offset_ > 0 && it.iteration == 0) return ceres::SOLVER_CONTINUE;  // same state as the last record
+    stop_reason_ = watch_.Observe(offset_ + it.iteration, it.cost);
+    if (!stop_reason_.empty()) return ceres::SOLVER_ABORT;
     IterationRecord r;
     r.iteration = offset_ + it.iteration;
     r.cost = it.cost;
@@ -92,7 +107,57 @@ class Observer : public ceres::IterationCallback {
   std::vector<IterationRecord>& log_;
   std::vector<int> hints_;
   int offset_ = 0;
+  CostWatch watch_;
+  std::string stop_reason_;
 };
+
+// The block with the largest cost, named for the error that ends a runaway
+// solve.
+std::string LargestResidual(ceres::Problem& problem, const std::vector<ceres::ResidualBlockId>& ids,
+                            const std::vector<ResidualLabel>& labels) {
+  double worst = -1;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    double cost = 0;
+    if (!problem.EvaluateResidualBlock(ids[i], true, &cost, nullptr, nullptr)) cost = INFINITY;
+    if (!(cost <= worst)) {  // NaN and inf count as worst
+      worst = cost;
+      at = i;
+      if (std::isnan(cost)) break;
+    }
+  }
+  if (ids.empty()) return "no residual";
+  char buf[48];
+  std::snprintf(buf, sizeof(buf), "%.3g", worst);
+  return labels[at].Describe() + ", cost " + buf;
+}
+
+// Defence in depth: what the validator refuses never reaches Ceres, even
+// for a bundle built in memory (the plausibility rules, the noise bounds,
+// a finite initial model pose).
+void CheckAdjustable(const SurveyBundle& b, const Pose& x_gM_initial) {
+  std::vector<Problem> found;
+  CheckSurveyPlausibility(b, SurveyPlaces::ForBundle(b.directory), found);
+  if (!found.empty()) throw InputError(found.front().where, found.front().message);
+  const std::string manifest = (std::filesystem::path(b.directory) / "survey.json").string();
+  NoiseModel noise = b.manifest.noise;
+  const CameraRig& cam = b.manifest.camera;
+  for (const plausible::SigmaBound& s : plausible::NoiseBounds(std::max(cam.width, cam.height))) {
+    const double v = plausible::NoiseField(noise, s.key);
+    if (!(v >= s.lo && v <= s.hi)) {
+      throw InputError({manifest, 0, 0, s.key}, FormatDouble(v) + " is not plausible (" + s.why + ")");
+    }
+  }
+  for (const PinholeIntrinsics& k : {cam.top, cam.bottom}) {
+    if (!(k.fx > 0 && k.fy > 0 && std::isfinite(k.fx) && std::isfinite(k.fy) && std::isfinite(k.cx) &&
+          std::isfinite(k.cy))) {
+      throw InputError({manifest, 0, 0, "camera"}, "the intrinsics are not finite and positive");
+    }
+  }
+  if (!Queryable(x_gM_initial.translation()) || !x_gM_initial.rotation().allFinite()) {
+    throw InputError({manifest, 0, 0, "model_pose_guess"}, "the initial model pose is not finite or absurd");
+  }
+}
 
 double Or(double override_value, double survey_value) { return override_value > 0 ? override_value : survey_value; }
 
@@ -103,6 +168,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   o.Check();
   const auto t0 = Clock::now();
   if (b.nav.empty()) throw InputError({b.directory, 0, 0, "nav.csv"}, "the survey has no keyframes to adjust");
+  CheckAdjustable(b, x_gM_initial);
   if (mesh.empty()) throw InputError({"mesh", 0, 0, ""}, "the prior mesh has no faces");
   progress.Update(0.0, "indexing the prior mesh");
   const MeshIndex index(mesh);
@@ -276,6 +342,12 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   ceres::Problem problem(po);
   ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> se3;
   ceres::HuberLoss huber(o.huber_sigmas);
+  std::vector<ceres::ResidualBlockId> block_ids;  // with labels, to name the likely input of a runaway
+  std::vector<ResidualLabel> block_labels;
+  auto label = [&](ceres::ResidualBlockId id, ResidualLabel::Kind kind, std::int64_t a = 0, std::int64_t b_ = 0) {
+    block_ids.push_back(id);
+    block_labels.push_back({kind, a, b_});
+  };
   for (int i = 0; i < K; ++i) {
     problem.AddParameterBlock(s.pose[static_cast<std::size_t>(i)].data(), kPoseSize, &se3);
     problem.AddParameterBlock(&s.servo[static_cast<std::size_t>(i)], 1);
@@ -288,20 +360,25 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   for (auto& l : s.landmark) problem.AddParameterBlock(l.data(), 3);
 
   // Priors: gauge, zpr, servo, extrinsic, model pose.
-  problem.AddResidualBlock(adjust::GaugePriorFactor::Create(b.nav[0].x_gv, o.gauge_sigma_xy, o.gauge_sigma_yaw),
-                           nullptr, s.pose[0].data());
+  label(problem.AddResidualBlock(adjust::GaugePriorFactor::Create(b.nav[0].x_gv, o.gauge_sigma_xy, o.gauge_sigma_yaw),
+                                 nullptr, s.pose[0].data()),
+        ResidualLabel::kGauge, b.nav[0].keyframe);
   for (int i = 0; i < K; ++i) {
     const NavRecord& n = b.nav[static_cast<std::size_t>(i)];
-    problem.AddResidualBlock(adjust::ZprFactor::Create(n.depth, n.pitch_meas, n.roll_meas, depth_sigma, rp_sigma),
-                             nullptr, s.pose[static_cast<std::size_t>(i)].data());
-    problem.AddResidualBlock(adjust::ServoPriorFactor::Create(n.servo, servo_sigma), nullptr,
-                             &s.servo[static_cast<std::size_t>(i)]);
+    label(problem.AddResidualBlock(adjust::ZprFactor::Create(n.depth, n.pitch_meas, n.roll_meas, depth_sigma, rp_sigma),
+                                   nullptr, s.pose[static_cast<std::size_t>(i)].data()),
+          ResidualLabel::kZpr, n.keyframe);
+    label(problem.AddResidualBlock(adjust::ServoPriorFactor::Create(n.servo, servo_sigma), nullptr,
+                                   &s.servo[static_cast<std::size_t>(i)]),
+          ResidualLabel::kServo, n.keyframe);
   }
-  problem.AddResidualBlock(adjust::PosePriorFactor::Create(extrinsic_nominal, nz.servo_to_top_sigma), nullptr,
-                           s.extrinsic.data());
+  label(problem.AddResidualBlock(adjust::PosePriorFactor::Create(extrinsic_nominal, nz.servo_to_top_sigma), nullptr,
+                                 s.extrinsic.data()),
+        ResidualLabel::kExtrinsic);
   const Pose x_gC_prior = x_gM_initial * s.model_offset.Inverse();
-  problem.AddResidualBlock(adjust::PosePriorFactor::Create(x_gC_prior, Vector6d::Constant(model_sigma)), nullptr,
-                           s.model.data());
+  label(problem.AddResidualBlock(adjust::PosePriorFactor::Create(x_gC_prior, Vector6d::Constant(model_sigma)), nullptr,
+                                 s.model.data()),
+        ResidualLabel::kModelPose);
   // Odometry.
   for (const OdometryRecord& od : b.odometry) {
     const int i = kf_index.at(od.from), j = kf_index.at(od.to);
@@ -310,8 +387,10 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     Vector6d sigma;
     sigma.head<3>().setConstant(nz.odometry_translation_rate * dt);
     sigma.tail<3>().setConstant(nz.odometry_rotation_rate * dt);
-    problem.AddResidualBlock(adjust::OdometryFactor::Create(od.z, sigma), nullptr,
-                             s.pose[static_cast<std::size_t>(i)].data(), s.pose[static_cast<std::size_t>(j)].data());
+    label(problem.AddResidualBlock(adjust::OdometryFactor::Create(od.z, sigma), nullptr,
+                                   s.pose[static_cast<std::size_t>(i)].data(),
+                                   s.pose[static_cast<std::size_t>(j)].data()),
+          ResidualLabel::kOdometry, od.from, od.to);
   }
   // Reprojection.
   struct ReprojectionBlock {
@@ -331,6 +410,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
           problem.AddResidualBlock(cf, &huber, s.pose[static_cast<std::size_t>(k)].data(),
                                    &s.servo[static_cast<std::size_t>(k)], s.extrinsic.data(), s.landmark[li].data());
       reprojection.push_back({id, li, f.keyframe});
+      label(id, ResidualLabel::kReprojection, s.landmark_id[li], f.keyframe);
     }
   }
   // DVL raycasts.
@@ -340,9 +420,10 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
       for (int beam = 0; beam < 4; ++beam) {
         const double r = d.range[static_cast<std::size_t>(beam)];
         if (!DvlRecord::HasReturn(r)) continue;
-        problem.AddResidualBlock(adjust::DvlRaycastFactor::Create(&dvl_model, man.BeamDirection(beam), r, dvl_sigma),
-                                 &huber, s.pose[static_cast<std::size_t>(k)].data(),
-                                 &s.servo[static_cast<std::size_t>(k)], s.model.data());
+        label(problem.AddResidualBlock(
+                  adjust::DvlRaycastFactor::Create(&dvl_model, man.BeamDirection(beam), r, dvl_sigma), &huber,
+                  s.pose[static_cast<std::size_t>(k)].data(), &s.servo[static_cast<std::size_t>(k)], s.model.data()),
+              ResidualLabel::kDvl, d.keyframe, beam + 1);
       }
     }
   }
@@ -350,10 +431,10 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   std::vector<ceres::ResidualBlockId> surface_block(s.landmark.size(), nullptr);
   if (o.model != SurfaceModel::kNaive) {
     for (std::size_t li = 0; li < s.landmark.size(); ++li) {
-      auto& l = s.landmark[li];
       surface_block[li] = problem.AddResidualBlock(
           adjust::SurfaceFactor::Create(&index, &s.model_offset, o.lookup, o.model, o.sigma0, o.sigma1), nullptr,
-          s.model.data(), l.data());
+          s.model.data(), s.landmark[li].data());
+      label(surface_block[li], ResidualLabel::kSurface, s.landmark_id[li]);
     }
   }
 
@@ -412,6 +493,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   so.preconditioner_type = ceres::SCHUR_JACOBI;
   so.use_explicit_schur_complement = false;
   so.max_num_iterations = o.max_iterations;
+  if (o.max_solver_seconds > 0) so.max_solver_time_in_seconds = o.max_solver_seconds;
   so.function_tolerance = o.function_tolerance;
   so.gradient_tolerance = o.gradient_tolerance;
   so.parameter_tolerance = o.parameter_tolerance;
@@ -429,7 +511,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   ordering->AddElementToGroup(s.extrinsic.data(), 1);
   ordering->AddElementToGroup(s.model.data(), 1);
   so.linear_solver_ordering = ordering;
-  Observer observer(s, index, o, progress, result.iterations);
+  Observer observer(s, index, o, progress, result.iterations, static_cast<std::size_t>(problem.NumResiduals()));
   so.callbacks.push_back(&observer);
   progress.Update(0.1, std::string(SurfaceModelName(o.model)) + " adjustment: solving");
   ceres::Solver::Summary summary;
@@ -439,6 +521,11 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     observer.set_iteration_offset(result.iterations.empty() ? 0 : result.iterations.back().iteration);
     ceres::Solve(so, &problem, &summary);
     if (o.verbose) std::printf("%s\n", summary.FullReport().c_str());
+    if (!observer.stop_reason().empty()) {
+      throw InputError({b.directory, 0, 0, ""},
+                       "the adjustment stopped: " + observer.stop_reason() + ". The largest residual is " +
+                           LargestResidual(problem, block_ids, block_labels) + ": the likely input at fault");
+    }
     if (summary.termination_type == ceres::USER_FAILURE || progress.Cancelled()) throw Cancelled();
     if (summary.termination_type == ceres::FAILURE) {
       throw std::runtime_error("bundle adjustment failed: " + summary.message);
@@ -450,6 +537,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     const double limit2 = o.outlier_sigmas * o.outlier_sigmas;
     std::size_t removed = 0;
     std::vector<ReprojectionBlock> kept;
+    std::set<ceres::ResidualBlockId> gone;
     for (const ReprojectionBlock& rb : reprojection) {
       double r[4];
       problem.EvaluateResidualBlock(rb.id, false, nullptr, r, nullptr);
@@ -458,6 +546,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
       if (n == 4) bad = bad || r[2] * r[2] + r[3] * r[3] > limit2;
       if (bad) {
         problem.RemoveResidualBlock(rb.id);
+        gone.insert(rb.id);
         ++removed;
       } else {
         kept.push_back(rb);
@@ -469,6 +558,9 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     std::size_t lost = 0;
     for (std::size_t li = 0; li < s.landmark.size(); ++li) {
       if (dropped[li] || static_cast<int>(views[li].size()) >= o.min_observations) continue;
+      std::vector<ceres::ResidualBlockId> with;
+      problem.GetResidualBlocksForParameterBlock(s.landmark[li].data(), &with);
+      gone.insert(with.begin(), with.end());
       problem.RemoveParameterBlock(s.landmark[li].data());
       ordering->Remove(s.landmark[li].data());
       dropped[li] = 1;
@@ -482,6 +574,16 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
       kept.swap(still);
     }
     reprojection.swap(kept);
+    if (!gone.empty()) {  // keep the labels of the blocks still in the problem
+      std::size_t n = 0;
+      for (std::size_t i = 0; i < block_ids.size(); ++i) {
+        if (gone.count(block_ids[i])) continue;
+        block_ids[n] = block_ids[i];
+        block_labels[n++] = block_labels[i];
+      }
+      block_ids.resize(n);
+      block_labels.resize(n);
+    }
     result.observations_rejected += static_cast<int>(removed);
     result.num_landmarks_skipped += static_cast<int>(lost);
     for (std::size_t li = 0; li < s.landmark.size(); ++li) s.landmark_views[li] = static_cast<int>(views[li].size());

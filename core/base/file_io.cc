@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "base/error.h"
+#include "base/file_checks.h"
 
 namespace hull {
 
@@ -25,6 +26,10 @@ std::string MeshExtension(const std::string& path) {
   std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (EndsWith(p, ".gz")) p.resize(p.size() - 3);
   return std::filesystem::path(p).extension().string();
+}
+
+std::size_t MaxDecompressedSize(std::size_t compressed_bytes) {
+  return std::max<std::size_t>(kGzipFloorBytes, compressed_bytes * kMaxGzipRatio);
 }
 
 std::string ReadFileToString(const std::string& path) {
@@ -42,7 +47,15 @@ std::string ReadFileToString(const std::string& path) {
   if (failed || got != raw.size()) throw InputError({path, 0, 0, ""}, "read error");
   const bool gz =
       raw.size() >= 2 && static_cast<unsigned char>(raw[0]) == 0x1f && static_cast<unsigned char>(raw[1]) == 0x8b;
-  if (!gz) return raw;
+  if (!gz) {
+    if (EndsWith(path, ".gz") || EndsWith(path, ".GZ")) {
+      throw InputError({path, 0, 0, ""},
+                       "not gzip: the name ends in .gz but the file does not begin with the gzip "
+                       "signature (1f 8b); expected a gzip-compressed file");
+    }
+    return raw;
+  }
+  const std::size_t cap = MaxDecompressedSize(raw.size());
   z_stream zs{};
   if (inflateInit2(&zs, 15 + 32) != Z_OK) throw InputError({path, 0, 0, ""}, "cannot initialise zlib");
   std::string out;
@@ -51,9 +64,17 @@ std::string ReadFileToString(const std::string& path) {
   zs.avail_in = static_cast<uInt>(raw.size());
   int rc = Z_OK;
   while (true) {
-    if (zs.total_out >= out.size()) out.resize(out.size() * 2);
+    if (zs.total_out > cap) {
+      inflateEnd(&zs);
+      throw InputError({path, 0, 0, ""}, "refused: the gzip data expands more than " + std::to_string(kMaxGzipRatio) +
+                                             " times (past " + std::to_string(cap >> 20) + " MiB from " +
+                                             std::to_string(raw.size()) +
+                                             " bytes); real meshes and survey files compress a few times, so this is a "
+                                             "decompression bomb or a corrupt file");
+    }
+    if (zs.total_out >= out.size()) out.resize(std::min(out.size() * 2, cap + 1));
     zs.next_out = reinterpret_cast<Bytef*>(out.data() + zs.total_out);
-    zs.avail_out = static_cast<uInt>(out.size() - zs.total_out);
+    zs.avail_out = static_cast<uInt>(std::min<std::size_t>(out.size() - zs.total_out, 1u << 30));
     rc = inflate(&zs, Z_NO_FLUSH);
     if (rc == Z_STREAM_END) {
       // Concatenated gzip members: continue with the next one.
@@ -77,6 +98,32 @@ std::string ReadFileToString(const std::string& path) {
   out.resize(zs.total_out);
   inflateEnd(&zs);
   return out;
+}
+
+std::string OutputLocationProblem(const std::string& path, OutputKind kind) {
+  namespace fs = std::filesystem;
+  const bool folder = kind == OutputKind::kFolder;
+  if (path.empty()) return "no output location given";
+  std::error_code ec;
+  const fs::path p(path);
+  const bool exists = fs::exists(p, ec);
+  if (exists && folder && !fs::is_directory(p, ec))
+    return "'" + path + "' is a file; expected a folder for the results";
+  if (exists && !folder && fs::is_directory(p, ec)) return "'" + path + "' is a folder; expected a file name";
+  fs::path dir = exists && folder ? p : p.parent_path();
+  if (dir.empty()) dir = ".";
+  if (!fs::exists(dir, ec)) return "the folder '" + dir.string() + "' does not exist; create it first";
+  if (!fs::is_directory(dir, ec)) return "'" + dir.string() + "' is not a folder";
+  const fs::path probe = dir / (".hullinspect-write-test-" + std::to_string(static_cast<long long>(::getpid())));
+  std::FILE* f = std::fopen(probe.c_str(), "wx");
+  if (!f) {
+    const int err = errno;
+    return "cannot write in '" + dir.string() + "': " + std::strerror(err) +
+           (err == EROFS || err == EACCES || err == EPERM ? " (read-only)" : "");
+  }
+  std::fclose(f);
+  fs::remove(probe, ec);
+  return "";
 }
 
 void WriteFileAtomic(const std::string& path, std::string_view data) {

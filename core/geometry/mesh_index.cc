@@ -16,7 +16,10 @@
 #include <string>
 #include <thread>
 
+#include "base/csv.h"
+#include "base/error.h"
 #include "geometry/point_index.h"
+#include "geometry/query_bounds.h"
 
 namespace hull {
 namespace {
@@ -347,6 +350,13 @@ MeshIndex::MeshIndex(const TriangleMesh& mesh) : mesh_(mesh), impl_(std::make_un
       }
     }
   }
+  for (int v = 0; v < nv; ++v) {
+    if (!Queryable(mesh.vertices[static_cast<std::size_t>(v)])) {
+      throw InputError({"mesh", 0, 0, "vertex " + std::to_string(v)},
+                       "a coordinate is not finite or beyond " + FormatDouble(kMaxQueryCoordinate) +
+                           " m; the mesh cannot be indexed (Embree works in float)");
+    }
+  }
   if (nv > 0) {
     const Eigen::AlignedBox3d box = mesh.Bounds();
     I.centre = box.center();
@@ -493,7 +503,7 @@ RayHit MeshIndex::Raycast(const Eigen::Vector3d& origin, const Eigen::Vector3d& 
                           double t_min) const {
   RayHit out;
   const double len = direction.norm();
-  if (!(len > 0) || !(t_max > t_min) || mesh_.faces.empty()) return out;
+  if (!(len > 0) || !std::isfinite(len) || !(t_max > t_min) || mesh_.faces.empty() || !Queryable(origin)) return out;
   const Eigen::Vector3d d = direction / len;
   const Eigen::Vector3d o = origin - impl_->centre;
   const double margin = impl_->Margin(origin);
@@ -619,6 +629,12 @@ void MeshIndex::OccludedToward(const Eigen::Vector3d* points, int n, const Eigen
 ClosestPoint MeshIndex::Closest(const Eigen::Vector3d& q, int hint_face) const {
   ClosestPoint out;
   if (mesh_.faces.empty()) return out;
+  if (!Queryable(q)) {  // never reaches Embree: a valid face, an infinite distance
+    out.face = 0;
+    out.point = mesh_.vertices[static_cast<std::size_t>(mesh_.faces[0][0])];
+    out.distance = std::numeric_limits<double>::infinity();
+    return out;
+  }
   const ClosestSearch s = impl_->Search(mesh_, q, hint_face);
   out.point = q + s.best_offset;
   out.face = s.best_face;
@@ -630,6 +646,13 @@ SurfaceDistance MeshIndex::OrthogonalSignedDistance(const Eigen::Vector3d& q, Su
                                                     int hint_face) const {
   SurfaceDistance out;
   if (mesh_.faces.empty()) return out;
+  if (!Queryable(q)) {  // a valid face and a NaN distance: a solver rejects the step
+    out.face = 0;
+    out.point = mesh_.vertices[static_cast<std::size_t>(mesh_.faces[0][0])];
+    out.normal = impl_->face_normals[0];
+    out.signed_distance = std::numeric_limits<double>::quiet_NaN();
+    return out;
+  }
   if (lookup == SurfaceLookup::kNearestVertex) {
     // The paper's: p = the nearest vertex, n = the normal of a face using it.
     int v = impl_->vertex_index->NearestOne(q).first;
@@ -657,6 +680,7 @@ SurfaceDistance MeshIndex::OrthogonalSignedDistance(const Pose& x_gM, const Eige
 
 double MeshIndex::SignedDistance(const Eigen::Vector3d& q, int hint_face) const {
   if (mesh_.faces.empty()) return std::numeric_limits<double>::infinity();
+  if (!Queryable(q)) return std::numeric_limits<double>::quiet_NaN();
   const ClosestSearch s = impl_->Search(mesh_, q, hint_face);
   const int f = s.best_face;
   Eigen::Vector3d pseudonormal;
@@ -677,7 +701,10 @@ double MeshIndex::SignedDistance(const Eigen::Vector3d& q, int hint_face) const 
   return s.best_offset.dot(pseudonormal) > 0 ? -d : d;
 }
 
-int MeshIndex::NearestVertex(const Eigen::Vector3d& q) const { return impl_->vertex_index->NearestOne(q).first; }
+int MeshIndex::NearestVertex(const Eigen::Vector3d& q) const {
+  if (!Queryable(q)) return mesh_.vertices.empty() ? -1 : 0;
+  return impl_->vertex_index->NearestOne(q).first;
+}
 
 const std::vector<int>& MeshIndex::FacesOfVertex(int v) const { return impl_->vertex_faces.at(v); }
 

@@ -24,6 +24,7 @@
 #include "base/error.h"
 #include "base/file_io.h"
 #include "geometry/mesh_plugins.h"
+#include "geometry/query_bounds.h"
 
 namespace hull {
 namespace {
@@ -46,6 +47,40 @@ std::string Quote(std::string_view s) {
 
 [[noreturn]] void FailFile(const std::string& file, const std::string& message, const std::string& field = "") {
   throw InputError({file, 0, 0, field}, message);
+}
+
+[[noreturn]] void FailDegenerate(const std::string& file, std::uint64_t degenerate, std::uint64_t faces) {
+  FailFile(file, std::to_string(degenerate) + " of " + std::to_string(faces) +
+                     " triangles have zero area: not a usable surface (a mesh must be mostly real triangles; "
+                     "more than half degenerate is refused)");
+}
+
+// The checks every loaded mesh passes (issue 14): coordinates within
+// kMaxMeshCoordinate, a positive surface area, and at most half of the
+// triangles degenerate. Indices are checked by each reader.
+void CheckUsableSurface(const TriangleMesh& mesh, const std::string& file) {
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
+    if (!(mesh.vertices[v].cwiseAbs().maxCoeff() <= kMaxMeshCoordinate)) {
+      FailFile(file,
+               "vertex coordinate " + FormatDouble(mesh.vertices[v].cwiseAbs().maxCoeff()) +
+                   " is beyond the plausible " + FormatDouble(kMaxMeshCoordinate) +
+                   " (after scaling); a hull mesh spans metres to kilometres, so the file is corrupt or the "
+                   "scale wrong",
+               "vertex " + std::to_string(v));
+    }
+  }
+  double area = 0;
+  std::uint64_t degenerate = 0;
+  for (const Face& f : mesh.faces) {
+    const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(f[0])];
+    const double twice = (mesh.vertices[static_cast<std::size_t>(f[1])] - a)
+                             .cross(mesh.vertices[static_cast<std::size_t>(f[2])] - a)
+                             .norm();
+    if (!(twice > 0)) ++degenerate;
+    area += 0.5 * twice;
+  }
+  if (2 * degenerate > mesh.faces.size()) FailDegenerate(file, degenerate, mesh.faces.size());
+  if (!(area > 0)) FailFile(file, "the surface has zero area; expected a triangle mesh of a hull");
 }
 
 // ---- a cursor over text that knows its line and column ------------------
@@ -266,6 +301,20 @@ RawMesh ReadStlBinary(std::string_view data, const std::string& file) {
   if (data.size() > need) {
     FailFile(file, "binary STL with " + std::to_string(data.size() - need) + " bytes after the " + std::to_string(n) +
                        " triangles the header announces");
+  }
+  // A first pass over the records, before any allocation: a file of mostly
+  // zero-area triangles (a "degenerate-mesh bomb") is refused at once.
+  {
+    std::uint64_t degenerate = 0;
+    for (std::uint32_t t = 0; t < n; ++t) {
+      const char* rec = data.data() + 84 + 50 * static_cast<std::size_t>(t);
+      Eigen::Vector3d v[3];
+      for (int k = 0; k < 3; ++k) {
+        for (int c = 0; c < 3; ++c) v[k][c] = LoadBytes<float>(rec + 12 + 12 * k + 4 * c, true);
+      }
+      if (!((v[1] - v[0]).cross(v[2] - v[0]).squaredNorm() > 0)) ++degenerate;
+    }
+    if (n > 0 && 2 * degenerate > n) FailDegenerate(file, degenerate, n);
   }
   RawMesh m;
   m.soup = true;
@@ -919,12 +968,13 @@ TriangleMesh LoadMesh(const std::string& path, const MeshLoadOptions& options) {
   mesh.vertices = std::move(raw.vertices);
   mesh.faces = std::move(raw.faces);
   mesh.vertex_scalars = std::move(raw.scalars);
-  if (options.weld && raw.soup) mesh.WeldVertices(0.0);
   const bool identity =
       options.pose.translation() == Eigen::Vector3d::Zero() && options.pose.rotation() == Eigen::Matrix3d::Identity();
   if (options.scale != 1.0 || !identity) {
     mesh.Transform(options.pose, options.scale);
   }
+  CheckUsableSurface(mesh, path);
+  if (options.weld && raw.soup) mesh.WeldVertices(0.0);
   const OrientationReport report = options.orient_outward ? mesh.OrientOutward() : mesh.CheckTopology();
   if (options.orientation) *options.orientation = report;
   mesh.ComputeNormals();

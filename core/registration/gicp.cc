@@ -12,7 +12,9 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "base/csv.h"
 #include "base/error.h"
+#include "geometry/query_bounds.h"
 
 namespace hull {
 namespace {
@@ -200,6 +202,22 @@ GicpResult RunStage(const std::vector<Eigen::Vector3d>& source_in, const std::ve
 GicpResult AlignGicp(const std::vector<Eigen::Vector3d>& source, const std::vector<Eigen::Vector3d>& target,
                      const Pose& initial, const GicpOptions& o) {
   o.Check();
+  // No point PCL cannot work with reaches it (its k-d tree asserts on NaN;
+  // far points overflow the voxel grid and float covariances).
+  auto check = [](const std::vector<Eigen::Vector3d>& cloud, const char* name) {
+    for (std::size_t i = 0; i < cloud.size(); ++i) {
+      if (!Queryable(cloud[i])) {
+        throw InputError({"", 0, 0, std::string(name) + " point " + std::to_string(i)},
+                         "GICP input coordinate is not finite or beyond " + FormatDouble(kMaxQueryCoordinate) +
+                             " m; an absurd position in the survey or the mesh");
+      }
+    }
+  };
+  check(source, "source");
+  check(target, "target");
+  if (!initial.translation().allFinite() || !initial.rotation().allFinite()) {
+    throw InputError({"", 0, 0, "initial pose"}, "the initial GICP pose is not finite");
+  }
   Pose start = initial;
   int coarse_iterations = 0;
   if (o.coarse_voxel_size > 0) {

@@ -1,5 +1,6 @@
 #include "survey/survey_io.h"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <unordered_map>
@@ -8,7 +9,10 @@
 #include "base/csv.h"
 #include "base/file_io.h"
 #include "base/json.h"
+#include "geometry/mesh_io.h"
 #include "survey/survey_images.h"
+#include "survey/survey_manifest.h"
+#include "survey/survey_plausibility.h"
 
 namespace hull {
 namespace fs = std::filesystem;
@@ -56,209 +60,11 @@ std::string Rel(const std::string& dir, const std::string& file) { return (fs::p
 
 Vector6d ToVector6(const std::vector<double>& v) { return Eigen::Map<const Vector6d>(v.data()); }
 Eigen::Vector3d ToVector3(const std::vector<double>& v) { return Eigen::Vector3d(v[0], v[1], v[2]); }
-
-Json Vec(const Eigen::VectorXd& v) {
-  Json a = Json::Array();
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.Push(Json(v[i]));
-  return a;
-}
-
-// ---------------------------------------------------------------------------
-// survey.json
-// ---------------------------------------------------------------------------
-
-void CheckPositive(const JsonReader& r, std::string_view key, double v) {
-  if (!(v > 0)) r.Fail(r.Required(key), key, "expected a positive number, got " + FormatDouble(v));
-}
-
-PinholeIntrinsics ReadIntrinsics(const JsonReader& r) {
-  PinholeIntrinsics k;
-  k.fx = r.Number("fx");
-  CheckPositive(r, "fx", k.fx);
-  k.fy = r.Number("fy");
-  CheckPositive(r, "fy", k.fy);
-  k.cx = r.Number("cx");
-  k.cy = r.Number("cy");
-  return k;
-}
-
-Eigen::Vector3d NonZero3(const JsonReader& r, std::string_view key) {
-  Eigen::Vector3d v = ToVector3(r.Numbers(key, 3));
-  if (v.norm() < 1e-12) r.Fail(r.Required(key), key, "expected a non-zero direction");
-  return v;
-}
-
-SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
-  JsonReader root(doc, file);
-  SurveyManifest m;
-  const std::string format = root.String("format");
-  if (format != "hull-survey") {
-    root.Fail(root.Required("format"), "format", "expected \"hull-survey\", got \"" + format + "\"");
-  }
-  const std::int64_t version = root.Integer("version");
-  if (version != 1 && version != 2) {
-    root.Fail(root.Required("version"), "version",
-              "unsupported version " + std::to_string(version) + "; this reader knows versions 1 and 2");
-  }
-  m.version = static_cast<int>(version);
-  m.name = root.OptionalString("name").value_or("");
-  m.vehicle = root.OptionalString("vehicle").value_or("");
-  m.model_hint = root.OptionalString("model_hint");
-  if (m.model_hint && m.model_hint->empty()) root.Fail(root.Required("model_hint"), "model_hint", "empty path");
-
-  const JsonReader cam = root.Object("camera");
-  const std::string type = cam.String("type");
-  if (type == "stereo") {
-    m.camera.type = CameraType::kStereo;
-  } else if (type == "mono") {
-    m.camera.type = CameraType::kMono;
-  } else {
-    cam.Fail(cam.Required("type"), "type", "expected \"stereo\" or \"mono\", got \"" + type + "\"");
-  }
-  const std::int64_t w = cam.Integer("width"), h = cam.Integer("height");
-  if (w <= 0) cam.Fail(cam.Required("width"), "width", "expected a positive integer");
-  if (h <= 0) cam.Fail(cam.Required("height"), "height", "expected a positive integer");
-  m.camera.width = static_cast<int>(w);
-  m.camera.height = static_cast<int>(h);
-  m.camera.top = ReadIntrinsics(cam.Object("top"));
-  if (m.camera.stereo()) {
-    m.camera.bottom = ReadIntrinsics(cam.Object("bottom"));
-    m.camera.top_to_bottom = ToVector6(cam.Numbers("top_to_bottom", 6));
-  } else {
-    m.camera.bottom = m.camera.top;
-    m.camera.top_to_bottom.setZero();
-  }
-  m.camera.servo_to_top = ToVector6(cam.Numbers("servo_to_top", 6));
-
-  m.servo_mount = ToVector6(root.Object("servo").Numbers("mount", 6));
-
-  const JsonReader dvl = root.Object("dvl");
-  m.servo_to_dvl = ToVector6(dvl.Numbers("servo_to_dvl", 6));
-  const Json& beams = dvl.Required("beams");
-  if (!beams.is_array() || beams.items().size() != 4) {
-    dvl.Fail(beams, "beams", "expected an array of 4 beam directions (Janus DVL, in the order r1..r4)");
-  }
-  for (int i = 0; i < 4; ++i) {
-    const Json& b = beams.items()[static_cast<std::size_t>(i)];
-    const std::string key = "beams[" + std::to_string(i) + "]";
-    if (!b.is_array() || b.items().size() != 3) dvl.Fail(b, key, "expected 3 numbers");
-    for (int k = 0; k < 3; ++k) {
-      const Json& c = b.items()[static_cast<std::size_t>(k)];
-      if (!c.is_number()) dvl.Fail(c, key, "expected a number");
-      m.beams[static_cast<std::size_t>(i)][k] = c.as_number();
-    }
-    if (m.beams[static_cast<std::size_t>(i)].norm() < 1e-12) dvl.Fail(b, key, "expected a non-zero direction");
-  }
-
-  if (auto g = root.OptionalNumbers("model_pose_guess", 6)) m.model_pose_guess = ToVector6(*g);
-  if (auto ax = root.OptionalObject("model_axes")) {
-    ModelAxes a;
-    a.forward = NonZero3(*ax, "forward").normalized();
-    a.up = NonZero3(*ax, "up").normalized();
-    if (std::abs(a.forward.dot(a.up)) > 0.99) {
-      ax->Fail(ax->Required("up"), "up", "expected a direction not parallel to forward");
-    }
-    m.model_axes = a;
-  }
-  if (auto im = root.OptionalObject("images")) {
-    ImagingNote note;
-    if (im->Has("exposure_s")) {
-      note.exposure_s = im->Number("exposure_s");
-      CheckPositive(*im, "exposure_s", *note.exposure_s);
-    }
-    note.illumination = im->OptionalString("illumination");
-    m.imaging = note;
-  }
-  if (auto nz = root.OptionalObject("noise")) {
-    NoiseModel& n = m.noise;
-    struct Item {
-      const char* key;
-      double* value;
-    } items[] = {{"pixel_sigma", &n.pixel_sigma},
-                 {"dvl_range_sigma", &n.dvl_range_sigma},
-                 {"depth_sigma", &n.depth_sigma},
-                 {"roll_pitch_sigma", &n.roll_pitch_sigma},
-                 {"servo_sigma", &n.servo_sigma},
-                 {"odometry_translation_rate", &n.odometry_translation_rate},
-                 {"odometry_rotation_rate", &n.odometry_rotation_rate},
-                 {"model_pose_sigma", &n.model_pose_sigma}};
-    for (const auto& it : items) {
-      if (!nz->Has(it.key)) continue;
-      *it.value = nz->Number(it.key);
-      CheckPositive(*nz, it.key, *it.value);
-    }
-    if (auto s = nz->OptionalNumbers("servo_to_top_sigma", 6)) {
-      for (double v : *s) {
-        if (!(v > 0)) nz->Fail(nz->Required("servo_to_top_sigma"), "servo_to_top_sigma", "expected 6 positive numbers");
-      }
-      n.servo_to_top_sigma = ToVector6(*s);
-    }
-  }
-  return m;
-}
-
-Json ManifestJson(const SurveyManifest& m) {
-  Json root = Json::Object();
-  root.Set("format", "hull-survey");
-  root.Set("version", m.version);
-  if (!m.name.empty()) root.Set("name", m.name);
-  if (!m.vehicle.empty()) root.Set("vehicle", m.vehicle);
-  if (m.model_hint) root.Set("model_hint", *m.model_hint);
-  auto intr = [](const PinholeIntrinsics& k) {
-    Json j = Json::Object();
-    j.Set("fx", k.fx);
-    j.Set("fy", k.fy);
-    j.Set("cx", k.cx);
-    j.Set("cy", k.cy);
-    return j;
-  };
-  Json cam = Json::Object();
-  cam.Set("type", m.camera.stereo() ? "stereo" : "mono");
-  cam.Set("width", m.camera.width);
-  cam.Set("height", m.camera.height);
-  cam.Set("top", intr(m.camera.top));
-  if (m.camera.stereo()) {
-    cam.Set("bottom", intr(m.camera.bottom));
-    cam.Set("top_to_bottom", Vec(m.camera.top_to_bottom));
-  }
-  cam.Set("servo_to_top", Vec(m.camera.servo_to_top));
-  root.Set("camera", cam);
-  Json servo = Json::Object();
-  servo.Set("mount", Vec(m.servo_mount));
-  root.Set("servo", servo);
-  Json dvl = Json::Object();
-  dvl.Set("servo_to_dvl", Vec(m.servo_to_dvl));
-  Json beams = Json::Array();
-  for (const auto& b : m.beams) beams.Push(Vec(b));
-  dvl.Set("beams", beams);
-  root.Set("dvl", dvl);
-  if (m.model_pose_guess) root.Set("model_pose_guess", Vec(*m.model_pose_guess));
-  if (m.model_axes) {
-    Json ax = Json::Object();
-    ax.Set("forward", Vec(m.model_axes->forward));
-    ax.Set("up", Vec(m.model_axes->up));
-    root.Set("model_axes", ax);
-  }
-  const NoiseModel& n = m.noise;
-  Json nz = Json::Object();
-  nz.Set("pixel_sigma", n.pixel_sigma);
-  nz.Set("dvl_range_sigma", n.dvl_range_sigma);
-  nz.Set("depth_sigma", n.depth_sigma);
-  nz.Set("roll_pitch_sigma", n.roll_pitch_sigma);
-  nz.Set("servo_sigma", n.servo_sigma);
-  nz.Set("odometry_translation_rate", n.odometry_translation_rate);
-  nz.Set("odometry_rotation_rate", n.odometry_rotation_rate);
-  nz.Set("model_pose_sigma", n.model_pose_sigma);
-  nz.Set("servo_to_top_sigma", Vec(n.servo_to_top_sigma));
-  root.Set("noise", nz);
-  if (m.imaging) {
-    Json im = Json::Object();
-    if (m.imaging->exposure_s) im.Set("exposure_s", *m.imaging->exposure_s);
-    if (m.imaging->illumination) im.Set("illumination", *m.imaging->illumination);
-    root.Set("images", im);
-  }
-  return root;
-}
+using survey_manifest::CheckPositive;
+using survey_manifest::ManifestJson;
+using survey_manifest::NonZero3;
+using survey_manifest::ParseManifest;
+using survey_manifest::Vec;
 
 // ---------------------------------------------------------------------------
 // CSV files
@@ -328,7 +134,7 @@ struct Keyframes {
   }
 };
 
-void ReadNav(const std::string& dir, SurveyBundle& b, Diagnostics& diag, Keyframes& kf) {
+void ReadNav(const std::string& dir, SurveyBundle& b, Diagnostics& diag, Keyframes& kf, CsvRowPlaces& places) {
   const std::string name = Rel(dir, "nav.csv");
   std::string text;
   if (!OpenCsv(name, name, true, diag, text)) return;
@@ -370,12 +176,15 @@ void ReadNav(const std::string& dir, SurveyBundle& b, Diagnostics& diag, Keyfram
         }
         last_t = n.t;
         b.nav.push_back(n);
+        const int cols[11] = {c_t, c_x[0], c_x[1], c_x[2], c_x[3], c_x[4], c_x[5], c_depth, c_rm, c_pm, c_servo};
+        places.Add(r, cols);
       });
   if (b.nav.empty()) diag.Error({name, 0, 0, ""}, "no keyframes: expected at least one row");
   kf.index = b.KeyframeIndex();
 }
 
-void ReadOdometry(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
+void ReadOdometry(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag,
+                  CsvRowPlaces& places) {
   const std::string name = Rel(dir, "odometry.csv");
   std::string text;
   if (!OpenCsv(name, name, true, diag, text)) return;
@@ -396,10 +205,12 @@ void ReadOdometry(const std::string& dir, SurveyBundle& b, const Keyframes& kf, 
         if (!kf.Check(r, c_from, o.from) || !kf.Check(r, c_to, o.to)) return;
         if (o.from == o.to) r.Fail(c_to, "odometry from a keyframe to itself");
         b.odometry.push_back(o);
+        const int cols[8] = {c_from, c_to, c_z[0], c_z[1], c_z[2], c_z[3], c_z[4], c_z[5]};
+        places.Add(r, cols);
       });
 }
 
-void ReadDvl(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
+void ReadDvl(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag, CsvRowPlaces& places) {
   const std::string name = Rel(dir, "dvl.csv");
   std::string text;
   if (!OpenCsv(name, name, true, diag, text)) return;
@@ -423,7 +234,10 @@ void ReadDvl(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagn
             d.range[static_cast<std::size_t>(i)] = *v;
           }
         }
-        if (kf.Check(r, c_kf, d.keyframe)) b.dvl.push_back(d);
+        if (kf.Check(r, c_kf, d.keyframe)) {
+          b.dvl.push_back(d);
+          places.Add(r, c_r);
+        }
       });
 }
 
@@ -476,7 +290,7 @@ void ReadFeatures(const std::string& dir, SurveyBundle& b, const Keyframes& kf, 
       });
 }
 
-void ReadLandmarks(const std::string& dir, SurveyBundle& b, Diagnostics& diag) {
+void ReadLandmarks(const std::string& dir, SurveyBundle& b, Diagnostics& diag, CsvRowPlaces& places) {
   const std::string name = Rel(dir, "landmarks.csv");
   std::string text;
   if (!OpenCsv(name, name, false, diag, text)) return;
@@ -502,6 +316,7 @@ void ReadLandmarks(const std::string& dir, SurveyBundle& b, Diagnostics& diag) {
         }
         if (!observed.count(l.landmark)) diag.Warning(r.Where(c_id), "landmark is never observed in features.csv");
         out.push_back(l);
+        places.Add(r, c_p);
       });
   b.landmarks = std::move(out);
 }
@@ -672,8 +487,22 @@ bool ReadImagesFolder(const std::string& dir, SurveyBundle& b, const Keyframes& 
   return true;
 }
 
+// The mesh model_hint names, opened and checked as the pipeline will load it
+// (finite, indices in range, a usable surface: geometry/mesh_io.h); its
+// problem is reported at model_hint, naming the mesh's own place.
+void CheckModelHintMesh(const std::string& path, const SourceLocation& at, Diagnostics& diag) {
+  try {
+    MeshLoadOptions o;
+    o.orient_outward = false;
+    LoadMesh(path, o);
+  } catch (const InputError& e) {
+    diag.Error(at, "the mesh cannot be used: " + std::string(e.what()));
+  }
+}
+
 SurveyBundle ReadImpl(const std::string& dir, std::vector<Problem>* problems) {
   Diagnostics diag(problems);
+  SurveyPlaces places = SurveyPlaces::ForBundle(dir);
   SurveyBundle b;
   b.directory = dir;
   std::error_code ec;
@@ -693,10 +522,17 @@ SurveyBundle ReadImpl(const std::string& dir, std::vector<Problem>* problems) {
       try {
         b.manifest = ParseManifest(doc, man_path);
         manifest_ok = true;
-        if (b.manifest.model_hint && !fs::exists(b.ModelHintPath(), ec)) {
+        if (const Json* guess = doc.Get("model_pose_guess")) {
+          places.model_pose_guess = {man_path, guess->line(), guess->column(), "model_pose_guess"};
+        }
+        if (b.manifest.model_hint) {
           const Json* hint = doc.Get("model_hint");
-          diag.Error({man_path, hint->line(), hint->column(), "model_hint"},
-                     "the mesh file '" + *b.manifest.model_hint + "' does not exist in the bundle");
+          const SourceLocation at{man_path, hint->line(), hint->column(), "model_hint"};
+          if (!fs::exists(b.ModelHintPath(), ec)) {
+            diag.Error(at, "the mesh file '" + *b.manifest.model_hint + "' does not exist in the bundle");
+          } else if (diag.collecting()) {
+            CheckModelHintMesh(b.ModelHintPath(), at, diag);
+          }
         }
       } catch (const InputError& e) {
         diag.Error(e);
@@ -704,15 +540,21 @@ SurveyBundle ReadImpl(const std::string& dir, std::vector<Problem>* problems) {
     }
   }
   Keyframes kf;
-  ReadNav(dir, b, diag, kf);
-  ReadOdometry(dir, b, kf, diag);
-  ReadDvl(dir, b, kf, diag);
+  ReadNav(dir, b, diag, kf, places.nav);
+  ReadOdometry(dir, b, kf, diag, places.odometry);
+  ReadDvl(dir, b, kf, diag, places.dvl);
   if (manifest_ok) {
     ReadFeatures(dir, b, kf, diag, !ReadImagesFolder(dir, b, kf, diag));
   } else if (diag.collecting()) {
     diag.Warning({Rel(dir, "features.csv"), 0, 0, ""}, "not checked: survey.json could not be read");
   }
-  ReadLandmarks(dir, b, diag);
+  ReadLandmarks(dir, b, diag, places.landmarks);
+  {
+    // The rules that need the whole survey (survey_plausibility.h).
+    std::vector<Problem> found;
+    CheckSurveyPlausibility(b, places, found);
+    for (const Problem& p : found) diag.Error(p.where, p.message);
+  }
   ReadTruth(dir, b, kf, diag);
   const std::string sonar_dir = Rel(dir, "sonar");
   if (fs::exists(Rel(sonar_dir, "sonar.json"), ec)) {

@@ -4,14 +4,19 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <zlib.h>
+
 #include <array>
+#include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "support/test_files.h"
 #include "unit/vision/vision_scene.h"
+#include "support/test_surveys.h"
 
 namespace {
 
@@ -228,6 +233,157 @@ TEST(Cli, FeaturesFromImagesThenValidate) {
   r = Cli({"features", dir.path(), "--ratio", "2", "--out", dir / "other.csv"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("ratio"), std::string::npos) << r.output;
+// ---- issue 14: what validate accepts never crashes or hangs adjust ----------------------
+
+// The small simulated survey (tests/support) with one CSV field replaced:
+// `field` (0-based) of data row `row` (0-based) of `file`.
+void EditCsvField(const std::string& file, int row, int field, const std::string& value) {
+  const std::string text = hull::testing::ReadText(file);
+  const std::string line = hull::testing::LineOf(text, row + 2);
+  const auto start = static_cast<std::size_t>(hull::testing::CsvColumn(line, field) - 1);
+  const auto end = line.find(',', start);
+  hull::testing::ReplaceLine(file, row + 2,
+                             line.substr(0, start) + value + (end == std::string::npos ? "" : line.substr(end)));
+}
+
+TEST(CliRobust, AbsurdNavValuesFailValidateAndAdjustExitsThreeQuickly) {
+  const hull::testing::ScratchDir tmp("cli_robust_nav");
+  struct Case {
+    int field;
+    const char* value;
+    const char* name;
+  };
+  // nav.csv: keyframe,t,x,y,z,...; the issue's values on the second data row.
+  for (const Case& c :
+       {Case{2, "1e308", "x"}, Case{2, "1e30", "x"}, Case{2, "1e10", "x"}, Case{2, "1e6", "x"}, Case{4, "2e9", "z"}}) {
+    const std::string bundle = tmp / (std::string("b") + c.value);
+    hull::test::WriteSmallSurvey(bundle);
+    EditCsvField(bundle + "/nav.csv", 1, c.field, c.value);
+    const std::string line = hull::testing::LineOf(hull::testing::ReadText(bundle + "/nav.csv"), 3);
+    const std::string place =
+        "nav.csv:3:" + std::to_string(hull::testing::CsvColumn(line, c.field)) + " (" + c.name + ")";
+    CliRun r = Cli({"validate", bundle});
+    EXPECT_EQ(r.exit_code, 1) << c.value << "\n" << r.output;
+    EXPECT_NE(r.output.find(place), std::string::npos) << r.output;
+    const auto t0 = std::chrono::steady_clock::now();
+    r = Cli({"adjust", bundle, "--out", tmp / "out", "--quiet"});
+    EXPECT_EQ(r.exit_code, 3) << c.value << "\n" << r.output;  // not 134 (a library assertion), not a stall
+    EXPECT_NE(r.output.find(place), std::string::npos) << r.output;
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 20.0);
+  }
+}
+
+TEST(CliRobust, AbsurdManifestDuplicatedOdometryAndBadMeshFailValidate) {
+  const hull::testing::ScratchDir tmp("cli_robust_manifest");
+  struct Case {
+    std::string from, to, expect;
+  };
+  for (const Case& c : {Case{"\"fx\": 1150", "\"fx\": 2000000000", "(camera.top.fx)"},
+                        Case{"\"pixel_sigma\": 2", "\"pixel_sigma\": 2000000000", "(noise.pixel_sigma)"}}) {
+    const std::string bundle = tmp / "m";
+    std::filesystem::remove_all(bundle);
+    hull::test::WriteSmallSurvey(bundle);
+    std::string json = hull::testing::ReadText(bundle + "/survey.json");
+    const auto at = json.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from << "\n" << json;
+    json.replace(at, c.from.size(), c.to);
+    hull::testing::WriteText(bundle + "/survey.json", json);
+    CliRun r = Cli({"validate", bundle});
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("survey.json:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.expect), std::string::npos) << r.output;
+    r = Cli({"adjust", bundle, "--out", tmp / "out", "--quiet"});
+    EXPECT_EQ(r.exit_code, 3) << r.output;
+  }
+  // A duplicated odometry row.
+  const std::string dup = tmp / "dup";
+  hull::test::WriteSmallSurvey(dup);
+  const std::string odo = hull::testing::ReadText(dup + "/odometry.csv");
+  hull::testing::WriteText(dup + "/odometry.csv", odo + hull::testing::LineOf(odo, 2) + "\n");
+  CliRun r = Cli({"validate", dup});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("duplicates line 2"), std::string::npos) << r.output;
+  // A corrupted hull.ply: validate opens the model_hint mesh.
+  const std::string mesh = tmp / "mesh";
+  hull::test::WriteSmallSurvey(mesh);
+  std::string ply = hull::testing::ReadText(mesh + "/hull.ply");
+  ply.resize(ply.size() - 200);
+  hull::testing::WriteText(mesh + "/hull.ply", ply);
+  r = Cli({"validate", mesh});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("(model_hint)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("hull.ply"), std::string::npos) << r.output;
+}
+
+TEST(CliRobust, OutputLocationIsCheckedBeforeAnyWork) {
+  const hull::testing::ScratchDir tmp("cli_robust_out");
+  const std::string bundle = tmp / "bundle";
+  hull::test::WriteSmallSurvey(bundle);
+  hull::testing::WriteText(tmp / "a-file", "x");
+  struct Case {
+    std::string out, expect;
+  };
+  for (const Case& c :
+       {Case{tmp / "a-file", "is a file; expected a folder"}, Case{tmp / "no/such/parent/out", "does not exist"},
+        Case{"/proc/hullinspect-out", "cannot write in '/proc'"}}) {
+    for (const char* cmd : {"adjust", "run"}) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const CliRun r = Cli({cmd, bundle, "--out", c.out, "--quiet"});
+      EXPECT_EQ(r.exit_code, 2) << cmd << " " << c.out << "\n" << r.output;
+      EXPECT_NE(r.output.find("--out " + c.out + ": "), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find(c.expect), std::string::npos) << r.output;
+      EXPECT_EQ(r.output.find("filesystem"), std::string::npos) << r.output;
+      EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0) << cmd;
+    }
+  }
+  CliRun r = Cli({"simulate", "--preset", "demo", "--out", tmp / "a-file"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = Cli({"export", bundle, "--out", tmp / "no/such/parent/x.ply"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
+}
+
+TEST(CliRobust, NotGzipAndDegenerateBombAreRefused) {
+  const hull::testing::ScratchDir tmp("cli_robust_gz");
+  hull::testing::WriteText(tmp / "hull.stl.gz", "solid x\nendsolid x\n");
+  CliRun r = Cli({"info", tmp / "hull.stl.gz"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("not gzip"), std::string::npos) << r.output;
+  // 3 M degenerate triangles (150 MB of STL) in a small .stl.gz.
+  const std::string bomb = tmp / "bomb.stl.gz";
+  gzFile f = gzopen(bomb.c_str(), "wb9");
+  ASSERT_NE(f, nullptr);
+  const std::uint32_t n = 3000000;
+  std::string head(84, '\0');
+  std::memcpy(&head[80], &n, 4);
+  gzwrite(f, head.data(), static_cast<unsigned>(head.size()));
+  std::string rec(50, '\0');
+  const float corners[9] = {0, 0, 0, 1, 0, 0, 2, 0, 0};
+  std::memcpy(&rec[12], corners, sizeof(corners));
+  std::string chunk;
+  for (int i = 0; i < 10000; ++i) chunk += rec;
+  for (std::uint32_t t = 0; t < n; t += 10000) gzwrite(f, chunk.data(), static_cast<unsigned>(chunk.size()));
+  gzclose(f);
+  const auto t0 = std::chrono::steady_clock::now();
+  r = Cli({"info", bomb});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("decompression bomb"), std::string::npos) << r.output;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 20.0);
+}
+
+TEST(CliRobust, MalformedHeadersAreBoundedAndEscaped) {
+  const hull::testing::ScratchDir tmp("cli_robust_header");
+  const std::string bundle = tmp / "bundle";
+  hull::test::WriteSmallSurvey(bundle);
+  // A 100 kB binary header with a duplicated column name.
+  std::string name;
+  for (int i = 0; i < 50000; ++i) name += (i % 2) ? '\x1b' : 'k';
+  hull::testing::WriteText(bundle + "/dvl.csv", name + "," + name + "\n1,2\n");
+  const CliRun r = Cli({"validate", bundle});
+  EXPECT_EQ(r.exit_code, 1) << r.output.substr(0, 2000);
+  EXPECT_LT(r.output.size(), 4000u) << r.output.substr(0, 2000);
+  EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << "an escape byte reached the terminal";
+  EXPECT_NE(r.output.find("\\x1b"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -33,6 +33,9 @@ SurveyBundle ImageBundle(bool stereo, int keyframes = 3) {
   b.manifest.camera.type = stereo ? CameraType::kStereo : CameraType::kMono;
   b.manifest.camera.width = kW;
   b.manifest.camera.height = kH;
+  // Intrinsics at the small images' scale (the default's are for 1360 x 1024).
+  b.manifest.camera.top = PinholeIntrinsics{115, 115, kW / 2.0, kH / 2.0};
+  b.manifest.camera.bottom = b.manifest.camera.top;
   b.manifest.imaging = ImagingNote{0.004, std::string("strobe")};
   for (int k = 0; k < keyframes; ++k) {
     NavRecord n;
