@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "geometry/mesh_io.h"
 #include "survey/acoustic_sequence.h"
+#include "survey/survey_images.h"
 #include "survey/survey_import.h"
 #include "survey/survey_io.h"
 
@@ -48,6 +49,25 @@ void BundleInfo(const SurveyBundle& b) {
     std::printf("truth           absent\n");
   }
   if (b.sonar) std::printf("sonar           %d steps\n", b.sonar->num_steps());
+  std::printf("format          version %d\n", m.version);
+  if (b.images) {
+    std::printf("images          %d of %d present, %d dropped frames\n", b.images->present(), b.images->expected,
+                b.images->dropped);
+    for (const KeyframeImages& k : b.images->frames) {
+      if (k.top.empty()) continue;
+      // The first image's header (the validator checks every image).
+      const ImageInfo info = InspectImageFile(b.ImagePath(k.keyframe), SurveyImageRequirements(m));
+      std::printf("image format    %s (%s, the first)\n", info.Describe().c_str(), k.top.c_str());
+      break;
+    }
+    if (m.imaging && m.imaging->illumination) {
+      std::printf("illumination    %s", m.imaging->illumination->c_str());
+      if (m.imaging->exposure_s) std::printf(", exposure %.4g s", *m.imaging->exposure_s);
+      std::printf("\n");
+    }
+  } else if (m.version >= 2) {
+    std::printf("images          none (no images/ folder)\n");
+  }
 }
 
 void SequenceInfo(const AcousticSequence& s, const std::string& path) {
@@ -59,6 +79,10 @@ void SequenceInfo(const AcousticSequence& s, const std::string& path) {
   std::printf("sensor          range %.2f..%.2f m, azimuth fov %.1f deg, elevation fov %.1f deg\n", s.sensor.range_min,
               s.sensor.range_max, s.sensor.azimuth_fov * 180 / M_PI, s.sensor.elevation_fov * 180 / M_PI);
   std::printf("truth           %s\n", s.truth ? "present" : "absent");
+  if (s.image) {
+    std::printf("images          %d range bins x %d beams (version 2)%s\n", s.image->range_bins, s.image->beams,
+                s.has_measurements ? "" : ", no measurements.csv");
+  }
 }
 
 // What an importer plugin reported (unit, surface count, ...).
