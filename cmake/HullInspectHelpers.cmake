@@ -13,6 +13,9 @@ function(hi_set_target_options target)
   if(HI_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
+  # Debian's hardening of linked programs and plugins (dpkg-buildflags;
+  # lintian's hardening-no-relro and hardening-no-bindnow).
+  target_link_options(${target} PRIVATE -Wl,-z,relro -Wl,-z,now)
   if(HI_SANITIZE)
     # GCC's -Wmaybe-uninitialized gives false positives under the sanitizers'
     # instrumentation (std::regex, std::function moves in libstdc++ 12).

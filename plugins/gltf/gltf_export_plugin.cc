@@ -20,6 +20,7 @@
 #include <string>
 
 #include "base/deviation_colours.h"
+#include "gltf/decimation.h"
 #include "plugin/plugin_api.h"
 
 namespace hull::gltf {
@@ -184,8 +185,12 @@ class GltfExporter final : public plugin::ResultExporter {
       const std::vector<double>* deviation = FindScalar(results.model, "deviation");
       if (!deviation) throw std::runtime_error("the model has no per-vertex deviation to colour by");
       const double r = ColourRange(results.model, *deviation, std::stod(settings.at("deviation-range")));
-      scene = ColouredScene(results.model, *deviation, r);
       report.emplace_back("content", "deviation as vertex colour, blue -" + Metres(r) + " to red +" + Metres(r));
+      plugin::MeshData model = results.model;
+      const auto limit = static_cast<std::size_t>(std::stod(settings.at("max-triangles")));
+      const DecimationResult decimation = Decimate(model, limit, std::stod(settings.at("max-error")));
+      if (!decimation.note.empty()) report.emplace_back("decimation", decimation.note);
+      scene = ColouredScene(model, *FindScalar(model, "deviation"), r);
     }
     unsigned vertices = 0, triangles = 0;
     for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
@@ -210,9 +215,12 @@ class GltfPlugin final : public plugin::Plugin {
     return "glTF 2.0 export of the remeshed model (assimp): deviation colours, or the photomosaic texture";
   }
   std::vector<plugin::OptionSpec> Options() const override {
-    return {{"deviation-range", "0",
-             "half-range of the deviation colours, metres (0: the report's, from the fused vertices)", true, 0.0,
-             100.0}};
+    return {
+        {"deviation-range", "0",
+         "half-range of the deviation colours, metres (0: the report's, from the fused vertices)", true, 0.0, 100.0},
+        {"max-triangles", "0",
+         "decimate the coloured model to at most this many triangles (0: keep all), for web viewers", true, 0.0, 1e9},
+        {"max-error", "0.001", "largest surface change decimation may make, metres", true, 1e-6, 1.0}};
   }
   std::vector<std::unique_ptr<plugin::ResultExporter>> ResultExporters() const override {
     std::vector<std::unique_ptr<plugin::ResultExporter>> v;

@@ -1,5 +1,6 @@
 #include "step_iges/cad_tessellation.h"
 
+#include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRep_Tool.hxx>
 #include <IFSelect_ReturnStatus.hxx>
@@ -14,7 +15,9 @@
 #include <Standard_Failure.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TCollection_HAsciiString.hxx>
+#include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedDataMapOfShapeListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <UnitsMethods.hxx>
@@ -99,6 +102,22 @@ int Count(const TopoDS_Shape& shape, TopAbs_ShapeEnum type) {
   return n;
 }
 
+// Edges that bound one face only: gaps between surface patches that were
+// never sewn into a shell (seams of closed surfaces and degenerate edges
+// aside). They tessellate into a mesh with holes along the patch borders.
+int FreeEdges(const TopoDS_Shape& shape) {
+  TopTools_IndexedDataMapOfShapeListOfShape faces_of;
+  TopExp::MapShapesAndAncestors(shape, TopAbs_EDGE, TopAbs_FACE, faces_of);
+  int n = 0;
+  for (int i = 1; i <= faces_of.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(faces_of.FindKey(i));
+    const TopTools_ListOfShape& faces = faces_of(i);
+    if (BRep_Tool::Degenerated(edge) || faces.Extent() != 1) continue;
+    if (!BRep_Tool::IsClosed(edge, TopoDS::Face(faces.First()))) ++n;
+  }
+  return n;
+}
+
 std::string Format(const char* fmt, double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, fmt, v);
@@ -138,12 +157,24 @@ plugin::ImportedMesh ReadAndTessellate(const std::string& path, CadFormat format
   const CollectMessages messages;
   try {
     std::string unit;
-    const TopoDS_Shape shape = ReadShape(path, format, messages, &unit);
-    const int faces = Count(shape, TopAbs_FACE);
-    if (shape.IsNull() || faces == 0) throw std::runtime_error("the file holds no surfaces (faces) to tessellate");
+    TopoDS_Shape shape = ReadShape(path, format, messages, &unit);
+    const int faces = shape.IsNull() ? 0 : Count(shape, TopAbs_FACE);
+    if (faces == 0) throw std::runtime_error("the file holds no surfaces (faces) to tessellate");
     // Shapes come in OpenCASCADE's unit (millimetres unless changed),
     // whatever the file's: the reader converted them.
     const double metres_per_unit = UnitsMethods::GetCasCadeLengthUnit() * 1e-3;
+    // Patches that meet within the sewing tolerance become one shell, so
+    // their tessellations share the border points and the mesh is closed.
+    const int free_before = FreeEdges(shape);
+    std::string free_edges = std::to_string(free_before);
+    if (free_before > 0 && options.sewing_tolerance > 0) {
+      BRepBuilderAPI_Sewing sewing(options.sewing_tolerance / metres_per_unit);
+      sewing.Add(shape);
+      sewing.Perform();
+      shape = sewing.SewedShape();
+      free_edges +=
+          ", " + std::to_string(FreeEdges(shape)) + " after sewing at " + Format("%g", options.sewing_tolerance) + " m";
+    }
     BRepMesh_IncrementalMesh mesher(shape, options.chord_tolerance / metres_per_unit, Standard_False,
                                     options.angular_tolerance, Standard_False);
     if (!mesher.IsDone()) throw std::runtime_error("OpenCASCADE could not tessellate the shape");
@@ -181,6 +212,7 @@ plugin::ImportedMesh ReadAndTessellate(const std::string& path, CadFormat format
         {"format", format == CadFormat::kStep ? "STEP" : "IGES"},
         {"file unit", (unit.empty() ? std::string("(none declared)") : unit) + ", converted to metres"},
         {"surfaces", std::to_string(faces) + (unmeshed ? " (" + std::to_string(unmeshed) + " not tessellated)" : "")},
+        {"free edges", free_edges},
         {"shells", std::to_string(Count(shape, TopAbs_SHELL))},
         {"solids", std::to_string(Count(shape, TopAbs_SOLID))},
         {"tessellation", std::to_string(m.num_triangles()) + " triangles at chord tolerance " +

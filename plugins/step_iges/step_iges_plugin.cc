@@ -52,6 +52,7 @@ class CadImporter final : public plugin::MeshImporter {
     TessellationOptions o;
     o.chord_tolerance = Number(settings, "chord-tolerance");
     o.angular_tolerance = Number(settings, "angular-tolerance");
+    o.sewing_tolerance = Number(settings, "sewing-tolerance");
     return ReadAndTessellate(path, format_, o);
   }
 
@@ -71,7 +72,13 @@ class StepIgesPlugin final : public plugin::Plugin {
         "chord-tolerance", "0.005", "largest distance of a triangle from the CAD surface, metres", true, 1e-6, 10.0};
     plugin::OptionSpec angle{
         "angular-tolerance", "0.5", "largest angle between neighbouring triangles' normals, radians", true, 0.01, 1.5};
-    return {chord, angle};
+    plugin::OptionSpec sewing{"sewing-tolerance",
+                              "0.001",
+                              "sew surface patches whose borders meet within this, metres (0: never)",
+                              true,
+                              0.0,
+                              0.1};
+    return {chord, angle, sewing};
   }
   std::vector<std::unique_ptr<plugin::MeshImporter>> MeshImporters() const override {
     std::vector<std::unique_ptr<plugin::MeshImporter>> v;

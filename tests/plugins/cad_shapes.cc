@@ -1,12 +1,15 @@
 #include "cad_shapes.h"
 
 #include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Copy.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
 #include <BRepCheck_Analyzer.hxx>
 #include <BRepGProp.hxx>
 #include <BRepOffsetAPI_ThruSections.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
+#include <BRep_Builder.hxx>
 #include <Bnd_Box.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomAPI_Interpolate.hxx>
@@ -17,6 +20,8 @@
 #include <Message_Printer.hxx>
 #include <STEPControl_Writer.hxx>
 #include <TColgp_HArray1OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopoDS_Compound.hxx>
 #include <TopoDS_Wire.hxx>
 #include <cmath>
 #include <stdexcept>
@@ -42,8 +47,7 @@ TopoDS_Wire HullSection(double x, const Eigen::Vector3d& size) {
   return BRepBuilderAPI_MakeWire(bottom, deck);
 }
 
-TopoDS_Shape MakeShape(CadShape shape, const Eigen::Vector3d& size) {
-  if (shape == CadShape::kBox) return BRepPrimAPI_MakeBox(size.x(), size.y(), size.z()).Shape();
+TopoDS_Shape MakeHull(const Eigen::Vector3d& size) {
   BRepOffsetAPI_ThruSections loft(Standard_True, Standard_False);
   for (int i = 0; i <= 8; ++i) loft.AddWire(HullSection(size.x() * (-0.45 + 0.9 * i / 8), size));
   loft.Build();
@@ -51,6 +55,20 @@ TopoDS_Shape MakeShape(CadShape shape, const Eigen::Vector3d& size) {
     throw std::runtime_error("the lofted hull is not a valid solid");
   }
   return loft.Shape();
+}
+
+// Each face copied on its own (its own edges), every other one moved up.
+TopoDS_Shape Unsew(const TopoDS_Shape& solid) {
+  BRep_Builder builder;
+  TopoDS_Compound patches;
+  builder.MakeCompound(patches);
+  int i = 0;
+  for (TopExp_Explorer ex(solid, TopAbs_FACE); ex.More(); ex.Next(), ++i) {
+    gp_Trsf lift;
+    lift.SetTranslation(gp_Vec(0, 0, i % 2 ? 0.3 : 0.0));
+    builder.Add(patches, BRepBuilderAPI_Transform(BRepBuilderAPI_Copy(ex.Current()).Shape(), lift, true).Shape());
+  }
+  return patches;
 }
 
 bool EndsWith(const std::string& s, const std::string& suffix) {
@@ -64,17 +82,19 @@ CadFacts WriteCadShape(CadShape kind, const Eigen::Vector3d& size, const std::st
   for (Message_SequenceOfPrinters::Iterator it(Message::DefaultMessenger()->Printers()); it.More(); it.Next()) {
     it.Value()->SetTraceLevel(Message_Fail);
   }
-  const TopoDS_Shape shape = MakeShape(kind, size);
+  const TopoDS_Shape shape =
+      kind == CadShape::kBox ? BRepPrimAPI_MakeBox(size.x(), size.y(), size.z()).Shape() : MakeHull(size);
+  const TopoDS_Shape written = kind == CadShape::kHullPatches ? Unsew(shape) : shape;
   if (EndsWith(path, ".step") || EndsWith(path, ".stp")) {
     STEPControl_Writer writer;
-    if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone ||
+    if (writer.Transfer(written, STEPControl_AsIs) != IFSelect_RetDone ||
         writer.Write(path.c_str()) != IFSelect_RetDone) {
       throw std::runtime_error("cannot write " + path);
     }
   } else {
     IGESControl_Controller::Init();
     IGESControl_Writer writer(iges_unit.c_str(), 1);  // 1: B-rep (faces, shells, solids)
-    if (!writer.AddShape(shape) || !writer.Write(path.c_str())) throw std::runtime_error("cannot write " + path);
+    if (!writer.AddShape(written) || !writer.Write(path.c_str())) throw std::runtime_error("cannot write " + path);
   }
   CadFacts facts;
   GProp_GProps surface, volume;

@@ -9,8 +9,11 @@
 namespace hull::test {
 
 enum class CadShape {
-  kBox,  // a box from the origin to `size`
-  kHull  // a Wigley-like hull lofted through B-spline sections: length, beam, depth = size
+  kBox,   // a box from the origin to `size`
+  kHull,  // a Wigley-like hull lofted through B-spline sections: length, beam, depth = size
+  // The hull's faces as separate patches, every other one 0.3 mm higher: no
+  // shared edges, a gap along each border (as surface-model CAD arrives).
+  kHullPatches
 };
 
 struct CadFacts {

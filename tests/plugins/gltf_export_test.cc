@@ -88,6 +88,42 @@ TEST_F(GltfExport, DeviationBecomesVertexColours) {
   plugin::Registry::Global().SetOption("gltf.deviation-range=0");
 }
 
+TEST_F(GltfExport, DecimationKeepsInputVerticesWithTheirColoursWithinTheErrorBound) {
+  // A unit sphere of 20,480 triangles, deviation 0.1 z: colour range 0.1 m.
+  TriangleMesh sphere = test::MakeIcosphere(1.0, 5);
+  std::vector<double> deviation;
+  for (const auto& v : sphere.vertices) deviation.push_back(0.1 * v.z());
+  sphere.SetScalar("deviation", deviation);
+  auto& registry = plugin::Registry::Global();
+  registry.SetOption("gltf.max-triangles=2000");
+  registry.SetOption("gltf.max-error=0.05");
+  auto report = ExportModel(sphere, "", tmp_ / "sphere.glb");
+  const std::map<std::string, std::string> facts(report.begin(), report.end());
+  EXPECT_THAT(facts.at("decimation"), HasSubstr("of 20480 triangles kept (OpenMesh quadric decimation"));
+
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(tmp_ / "sphere.glb", 0);
+  ASSERT_NE(scene, nullptr) << importer.GetErrorString();
+  const aiMesh* mesh = scene->mMeshes[0];
+  EXPECT_LE(mesh->mNumFaces, 2000u);
+  EXPECT_GT(mesh->mNumFaces, 1000u);
+  for (unsigned v = 0; v < mesh->mNumVertices; ++v) {
+    const aiVector3D& p = mesh->mVertices[v];
+    EXPECT_NEAR(p.Length(), 1.0, 1e-6);  // an input vertex, on the sphere
+    const auto rgb = DivergingRgb(p.z);  // its own deviation's colour
+    EXPECT_NEAR(mesh->mColors[0][v].r, rgb[0], 1e-5);
+    EXPECT_NEAR(mesh->mColors[0][v].b, rgb[2], 1e-5);
+  }
+  // A tight error bound stops the collapses short of the count.
+  registry.SetOption("gltf.max-error=0.00001");
+  report = ExportModel(sphere, "", tmp_ / "tight.glb");
+  const aiScene* tight = importer.ReadFile(tmp_ / "tight.glb", 0);
+  ASSERT_NE(tight, nullptr);
+  EXPECT_GT(tight->mMeshes[0]->mNumFaces, 10000u);
+  registry.SetOption("gltf.max-triangles=0");
+  registry.SetOption("gltf.max-error=0.001");
+}
+
 TEST_F(GltfExport, ThePhotomosaicIsExportedTexturedWhenTheResultsHoldOne) {
   const fs::path mosaic = fs::path(tmp_.path()) / "results" / "mosaic";
   fs::create_directories(mosaic);

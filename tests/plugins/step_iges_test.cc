@@ -32,7 +32,10 @@ class StepIges : public ::testing::Test {
         plugin::Registry::Global().LoadFile(std::string(HI_BINARY_DIR) + "/lib/hullinspect/plugins/step-iges.so");
     ASSERT_TRUE(record.loaded) << record.refused;
   }
-  void TearDown() override { plugin::Registry::Global().SetOption("step-iges.chord-tolerance=0.005"); }
+  void TearDown() override {
+    plugin::Registry::Global().SetOption("step-iges.chord-tolerance=0.005");
+    plugin::Registry::Global().SetOption("step-iges.sewing-tolerance=0.001");
+  }
 
   // LoadMesh as the programs call it, with the importer's report.
   TriangleMesh Load(const std::string& path, std::map<std::string, std::string>* report = nullptr) {
@@ -118,6 +121,25 @@ TEST_F(StepIges, LoftedHullMatchesTheExactSolidWithinTheChordTolerance) {
     EXPECT_TRUE(m.Bounds().max().isApprox(exact.bounds.max() * 1e-3, 1e-3)) << m.Bounds().max();
     EXPECT_EQ(report["surfaces"], "4");  // the lofted side, the deck, two end caps
   }
+}
+
+TEST_F(StepIges, UnsewnSurfacePatchesAreSewnIntoAClosedMesh) {
+  const std::string step = tmp_ / "patches.step";
+  const test::CadFacts exact = test::WriteCadShape(test::CadShape::kHullPatches, {20000, 4000, 2000}, step);
+  std::map<std::string, std::string> report;
+  plugin::Registry::Global().SetOption("step-iges.sewing-tolerance=0");
+  Load(step, &report);
+  EXPECT_FALSE(orientation_.closed);  // holes along every patch border
+  EXPECT_GT(orientation_.boundary_edges, 100);
+  EXPECT_THAT(report["free edges"], ::testing::Not(HasSubstr("sewing")));
+  EXPECT_GT(std::stoi(report["free edges"]), 0);
+
+  plugin::Registry::Global().SetOption("step-iges.sewing-tolerance=0.001");
+  const TriangleMesh m = Load(step, &report);
+  EXPECT_TRUE(orientation_.closed) << orientation_.boundary_edges << " boundary edges";
+  EXPECT_EQ(orientation_.components, 1);
+  EXPECT_THAT(report["free edges"], HasSubstr(", 0 after sewing at 0.001 m"));
+  EXPECT_NEAR(m.SignedVolume(), exact.volume * 1e-9, 0.005 * exact.area * 1e-6);
 }
 
 TEST_F(StepIges, AFinerChordToleranceGivesMoreTrianglesAndASmallerError) {
