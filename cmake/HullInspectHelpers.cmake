@@ -16,13 +16,36 @@ function(hi_set_target_options target)
   # Debian's hardening of linked programs and plugins (dpkg-buildflags;
   # lintian's hardening-no-relro and hardening-no-bindnow).
   target_link_options(${target} PRIVATE -Wl,-z,relro -Wl,-z,now)
-  if(HI_SANITIZE)
-    # GCC's -Wmaybe-uninitialized gives false positives under the sanitizers'
-    # instrumentation (std::regex, std::function moves in libstdc++ 12).
-    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer
-                                             -fno-sanitize-recover=undefined -Wno-maybe-uninitialized)
+  if(HI_SANITIZE OR HI_FUZZ)
+    # HI_FUZZ adds libFuzzer's coverage instrumentation (fuzzer-no-link: the
+    # libFuzzer runtime and its main() only go into the harnesses, see
+    # hi_add_fuzzer). GCC's -Wmaybe-uninitialized gives false positives under
+    # the sanitizers' instrumentation (std::regex, std::function moves in
+    # libstdc++ 12); clang has no such warning.
+    set(sanitizers address,undefined)
+    if(HI_FUZZ)
+      set(sanitizers fuzzer-no-link,address,undefined)
+    endif()
+    target_compile_options(${target} PRIVATE -fsanitize=${sanitizers} -fno-omit-frame-pointer
+                                             -fno-sanitize-recover=undefined)
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+      target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
+    endif()
     target_link_options(${target} PRIVATE -fsanitize=address,undefined)
   endif()
+endfunction()
+
+# hi_add_fuzzer(name SOURCES ... DEPS ... [DEFINITIONS ...]): a libFuzzer
+# harness (tests/fuzz), built only with HI_FUZZ; linked with
+# -fsanitize=fuzzer so libFuzzer provides main().
+function(hi_add_fuzzer name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;DEFINITIONS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  target_compile_definitions(${name} PRIVATE ${ARG_DEFINITIONS})
+  hi_set_target_options(${name})
+  target_link_options(${name} PRIVATE -fsanitize=fuzzer,address,undefined)
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/fuzz)
 endfunction()
 
 # hi_add_library(name SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])

@@ -7,6 +7,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config git clang-format
+  # the fuzzed readers (tests/fuzz): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-dev
   # core libraries
   libeigen3-dev libceres-dev libcgal-dev libopenmesh-dev libassimp-dev libopencv-dev
   libembree-dev libnanoflann-dev libpcl-dev libtbb-dev zlib1g-dev

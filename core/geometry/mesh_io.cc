@@ -472,6 +472,11 @@ PlyHeader ReadPlyHeader(std::string_view data, const std::string& file) {
       }
       p.name = std::string(cur.Token());
       if (p.name.empty()) cur.FailAtToken("expected a property name");
+      for (const PlyProperty& q : h.elements.back().properties) {
+        if (q.name == p.name) {
+          cur.FailAtToken("property '" + p.name + "' declared twice in element '" + h.elements.back().name + "'");
+        }
+      }
       h.elements.back().properties.push_back(std::move(p));
     } else if (kw == "end_header") {
       if (!have_format) cur.FailAtToken("the PLY header has no 'format' line");

@@ -7,6 +7,8 @@
 #include <IGESControl_Reader.hxx>
 #include <IGESData_GlobalSection.hxx>
 #include <IGESData_IGESModel.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_Printer.hxx>
@@ -21,6 +23,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Face.hxx>
 #include <UnitsMethods.hxx>
+#include <XSControl_WorkSession.hxx>
 #include <algorithm>
 #include <cstdio>
 #include <mutex>
@@ -132,6 +135,23 @@ TopoDS_Shape ReadShape(const std::string& path, CadFormat format, const CollectM
     const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
     if (status != IFSelect_RetDone)
       throw std::runtime_error(std::string("not a readable STEP file: ") + StatusText(status) + messages.Detail());
+    // OpenCASCADE keeps an entity whose parameters failed to parse, with null
+    // references where the parameters were, and its translation then
+    // dereferences them (a crash found by fuzzing, docs/reliability.md):
+    // refuse a file with any load failure before translating.
+    const Interface_CheckIterator checks = reader.WS()->ModelCheckList();
+    if (!checks.IsEmpty(Standard_True)) {
+      std::string first;
+      int failed = 0;
+      for (checks.Start(); checks.More(); checks.Next()) {
+        const Handle(Interface_Check)& check = checks.Value();
+        if (!check->HasFailed()) continue;
+        if (failed++ == 0 && check->NbFails() > 0) {
+          first = std::string(": ") + check->CFail(1) + " (entity " + std::to_string(checks.Number()) + ")";
+        }
+      }
+      throw std::runtime_error("malformed STEP file: " + std::to_string(failed) + " entities failed to load" + first);
+    }
     TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
     reader.FileUnits(lengths, angles, solid_angles);
     std::set<std::string> names;

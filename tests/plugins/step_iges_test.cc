@@ -173,5 +173,24 @@ TEST_F(StepIges, ABadFileIsAnInputErrorNamingItAndThePlugin) {
   EXPECT_THROW(LoadMesh(empty), InputError);
 }
 
+// Found by fuzzing (tests/fuzz, docs/reliability.md): an entity whose
+// parameters do not parse ("#89 = VECTOR('' <garbage>;") was kept by
+// OpenCASCADE with a null direction, and translating the shape crashed
+// inside OpenCASCADE (SEGV in StepGeom_Direction::NbDirectionRatios). The
+// plugin now refuses a file with load failures before translating it.
+TEST_F(StepIges, AnEntityThatFailedToLoadIsRefusedBeforeTranslation) {
+  const std::string path = tmp_ / "vector-without-direction.step";
+  testing::WriteText(path, testing::ReadText(std::string(HI_SOURCE_DIR) +
+                                             "/tests/fuzz/regressions/mesh_step/vector-without-direction.step"));
+  try {
+    LoadMesh(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, path);
+    EXPECT_THAT(e.what(), HasSubstr("malformed STEP file: "));
+    EXPECT_THAT(e.what(), HasSubstr("entities failed to load"));
+  }
+}
+
 }  // namespace
 }  // namespace hull
