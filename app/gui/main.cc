@@ -6,9 +6,9 @@
 #include <QGuiApplication>
 #include <cstdio>
 
-#include "ui/app_setup.h"
-#include "ui/command_line.h"
-#include "ui/main_window.h"
+#include "ui/app/app_setup.h"
+#include "ui/app/command_line.h"
+#include "ui/app/main_window.h"
 #include "ui/report/headless_job.h"
 
 namespace {
