@@ -10,6 +10,8 @@ PACKAGES=(
   # core libraries
   libeigen3-dev libceres-dev libcgal-dev libopenmesh-dev libassimp-dev libopencv-dev
   libembree-dev libnanoflann-dev libpcl-dev libtbb-dev zlib1g-dev
+  # the step-iges plugin: STEP and IGES through OpenCASCADE
+  libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev libocct-data-exchange-dev
   # GUI
   qtbase5-dev libqt5opengl5-dev libvtk9-dev libvtk9-qt-dev
   # tests: GoogleTest, a virtual X server for the GUI tests and the demo
@@ -19,6 +21,9 @@ PACKAGES=(
   # the report tests read the PDF back with an independent parser (pdfinfo),
   # and pdftoppm turns its pages into PNGs to look at
   poppler-utils
+  # the Debian package: dpkg-shlibdeps (dpkg-dev), and the checks CI runs on
+  # it (lintian, appstreamcli, desktop-file-validate)
+  dpkg-dev lintian appstream desktop-file-utils
 )
 
 missing=()

@@ -12,7 +12,7 @@
 #include "cli/console_progress.h"
 #include "geometry/mesh_io.h"
 #include "registration/model_alignment.h"
-#include "survey/survey_io.h"
+#include "survey/survey_import.h"
 
 namespace hull::cli {
 namespace {
@@ -126,7 +126,7 @@ int RunAlign(const CommandArgs& argv) {
   a.AllowOnly({"mesh", "mesh-scale", "no-guess", "out", "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle folder");
   const std::string dir = a.positionals()[0];
-  const SurveyBundle bundle = ReadSurveyBundle(dir);
+  const SurveyBundle bundle = OpenSurveyBundle(dir);
   std::string mesh_path = a.Get("mesh", "");
   if (mesh_path.empty()) mesh_path = bundle.ModelHintPath();
   if (mesh_path.empty()) throw UsageError("the bundle has no model_hint: give the mesh with --mesh");

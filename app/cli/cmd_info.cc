@@ -7,6 +7,8 @@
 #include "cli/commands.h"
 #include "geometry/mesh_io.h"
 #include "survey/acoustic_sequence.h"
+#include "survey/survey_images.h"
+#include "survey/survey_import.h"
 #include "survey/survey_io.h"
 
 namespace hull::cli {
@@ -16,7 +18,9 @@ const char* kHelp = R"(usage: hullinspect-cli info PATH [--scale S]
 
 Summarises a survey bundle (folder with survey.json), an acoustic sequence
 (folder with sonar.json) or a mesh file (STL, PLY, OBJ, OFF, glTF, ... also
-.gz). --scale applies a scale to a mesh on load (e.g. 59.4 for the DTC model).
+.gz; STEP and IGES through the step-iges plugin, which also reports the
+file's unit, surface count and tessellation), or a survey a plugin converts.
+--scale applies a scale to a mesh on load (e.g. 59.4 for the DTC model).
 )";
 
 void BundleInfo(const SurveyBundle& b) {
@@ -45,6 +49,25 @@ void BundleInfo(const SurveyBundle& b) {
     std::printf("truth           absent\n");
   }
   if (b.sonar) std::printf("sonar           %d steps\n", b.sonar->num_steps());
+  std::printf("format          version %d\n", m.version);
+  if (b.images) {
+    std::printf("images          %d of %d present, %d dropped frames\n", b.images->present(), b.images->expected,
+                b.images->dropped);
+    for (const KeyframeImages& k : b.images->frames) {
+      if (k.top.empty()) continue;
+      // The first image's header (the validator checks every image).
+      const ImageInfo info = InspectImageFile(b.ImagePath(k.keyframe), SurveyImageRequirements(m));
+      std::printf("image format    %s (%s, the first)\n", info.Describe().c_str(), k.top.c_str());
+      break;
+    }
+    if (m.imaging && m.imaging->illumination) {
+      std::printf("illumination    %s", m.imaging->illumination->c_str());
+      if (m.imaging->exposure_s) std::printf(", exposure %.4g s", *m.imaging->exposure_s);
+      std::printf("\n");
+    }
+  } else if (m.version >= 2) {
+    std::printf("images          none (no images/ folder)\n");
+  }
 }
 
 void SequenceInfo(const AcousticSequence& s, const std::string& path) {
@@ -56,6 +79,15 @@ void SequenceInfo(const AcousticSequence& s, const std::string& path) {
   std::printf("sensor          range %.2f..%.2f m, azimuth fov %.1f deg, elevation fov %.1f deg\n", s.sensor.range_min,
               s.sensor.range_max, s.sensor.azimuth_fov * 180 / M_PI, s.sensor.elevation_fov * 180 / M_PI);
   std::printf("truth           %s\n", s.truth ? "present" : "absent");
+  if (s.image) {
+    std::printf("images          %d range bins x %d beams (version 2)%s\n", s.image->range_bins, s.image->beams,
+                s.has_measurements ? "" : ", no measurements.csv");
+  }
+}
+
+// What an importer plugin reported (unit, surface count, ...).
+void PrintImportReport(const std::vector<std::pair<std::string, std::string>>& report) {
+  for (const auto& [key, value] : report) std::printf("%-15s %s\n", key.c_str(), value.c_str());
 }
 
 void MeshInfo(const std::string& path, double scale) {
@@ -63,7 +95,10 @@ void MeshInfo(const std::string& path, double scale) {
   lo.scale = scale;
   OrientationReport rep;
   lo.orientation = &rep;
+  std::vector<std::pair<std::string, std::string>> report;
+  lo.import_report = &report;
   const TriangleMesh m = LoadMesh(path, lo);
+  PrintImportReport(report);
   const auto box = m.Bounds();
   std::printf("mesh            %s\n", path.c_str());
   std::printf("vertices        %zu\n", m.num_vertices());
@@ -92,14 +127,14 @@ int RunInfo(const CommandArgs& argv) {
   if (a.positionals().size() != 1) throw UsageError("expected one path");
   const std::string path = a.positionals()[0];
   namespace fs = std::filesystem;
-  if (fs::is_directory(path)) {
-    if (fs::exists(fs::path(path) / "survey.json")) {
-      BundleInfo(ReadSurveyBundle(path));
-    } else if (fs::exists(fs::path(path) / "sonar.json")) {
-      SequenceInfo(ReadAcousticSequence(path), path);
-    } else {
-      throw InputError({path, 0, 0, ""}, "holds neither survey.json nor sonar.json");
-    }
+  if (fs::is_directory(path) && fs::exists(fs::path(path) / "sonar.json")) {
+    SequenceInfo(ReadAcousticSequence(path), path);
+  } else if (fs::is_directory(path) || (!IsMeshFile(path) && IsSurveyPath(path))) {
+    // A bundle folder, or a survey log a plugin converts into one.
+    std::vector<std::pair<std::string, std::string>> report;
+    const SurveyBundle bundle = OpenSurveyBundle(path, &report);
+    PrintImportReport(report);
+    BundleInfo(bundle);
   } else {
     MeshInfo(path, a.GetDouble("scale", 1.0));
   }

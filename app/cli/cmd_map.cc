@@ -8,7 +8,7 @@
 #include "cli/console_progress.h"
 #include "geometry/mesh_io.h"
 #include "mapping/mapper.h"
-#include "survey/survey_io.h"
+#include "survey/survey_import.h"
 
 namespace hull::cli {
 namespace {
@@ -70,7 +70,7 @@ int RunMap(const CommandArgs& argv) {
   const AdjustmentResult adjustment = ReadAdjustmentResult(results);
   const std::string bundle_path = a.Get("bundle", adjustment.bundle_path);
   if (bundle_path.empty()) throw UsageError("adjustment.json names no survey bundle: give --bundle");
-  const SurveyBundle bundle = ReadSurveyBundle(bundle_path);
+  const SurveyBundle bundle = OpenSurveyBundle(bundle_path);
   const std::string mesh_path = a.Get("mesh", adjustment.mesh_path);
   if (mesh_path.empty()) throw UsageError("adjustment.json names no mesh: give --mesh");
   MeshLoadOptions lo;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -12,6 +13,8 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/console_progress.h"
+#include "cli/sonar_image_output.h"
+#include "sonar/sonar_image_runner.h"
 #include "sonar/sonar_runner.h"
 #include "survey/acoustic_sequence.h"
 
@@ -25,6 +28,12 @@ sonar.json, or a survey bundle with sonar/) with the EKF of Mai et al.: the
 sonar pose and the features' positions with their full covariance, updated
 step by step from the controls and the range/azimuth measurements.
 
+The features come from measurements.csv (given correspondences) or, with
+--from-images, from the acoustic images of a version 2 sequence: point
+features detected in every image, associated with the filter's prediction
+(joint compatibility), started, confirmed and dropped automatically. The
+default is measurements.csv when the sequence has it, the images otherwise.
+
 Writes to DIR:
   poses.csv     per step: pose estimate, standard deviations, the 21 terms of
                 its covariance (upper triangle), dead reckoning, the update's
@@ -34,8 +43,17 @@ Writes to DIR:
                 error against the truth when present
   summary.json  options, counts, timing, final pose and features, and error
                 and NEES statistics when the sequence has truth
+  detections.csv  (--from-images) per step and detection: position, strength,
+                the feature it measured or started, and its true feature
 
 options:
+  --from-images            features from images/ (default when measurements.csv is absent)
+  --from-measurements      features from measurements.csv (default when present)
+  --confirm N              from images: views before a feature enters the state (default 3)
+  --gate P                 from images: chi-square gate probability (default 0.99)
+  --drop-misses N          from images: drop a feature predicted in view but
+                           missed at N consecutive steps (default 8)
+  --min-contrast L         from images: grey levels above the background (default 60)
   --init hypotheses|paper  feature initialisation (default hypotheses):
                            paper       elevation 0, sigma = elevation_fov/4
                            hypotheses  elevation hypotheses weighed by later
@@ -73,19 +91,22 @@ Json Finite(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 }  // namespace
 
 int RunSonar(const CommandArgs& argv) {
-  const std::set<std::string> flags = {"help", "short-form", "final-only", "quiet"};
+  const std::set<std::string> flags = {"help", "short-form", "final-only", "quiet", "from-images", "from-measurements"};
   Args a(argv, flags);
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly(
-      {"out", "init", "hypotheses", "collapse", "max-delay", "paper-sigma", "short-form", "final-only", "quiet"});
+  a.AllowOnly({"out", "init", "hypotheses", "collapse", "max-delay", "paper-sigma", "short-form", "final-only", "quiet",
+               "from-images", "from-measurements", "confirm", "gate", "drop-misses", "min-contrast"});
+  if (a.Has("from-images") && a.Has("from-measurements")) {
+    throw UsageError("--from-images and --from-measurements exclude each other");
+  }
   if (a.positionals().size() != 1) throw UsageError("expected one acoustic sequence folder");
   if (!a.Has("out")) throw UsageError("--out DIR is required");
   const std::string out = a.Get("out");
 
-  SonarRunOptions options;
+  SonarRunOptions options;  // not const: from images, the image chain's
   options.ekf.init = ParseSonarInit(a.Get("init", "hypotheses"));
   options.ekf.hypotheses = static_cast<int>(a.GetInt("hypotheses", options.ekf.hypotheses));
   options.ekf.collapse_probability = a.GetDouble("collapse", options.ekf.collapse_probability);
@@ -98,12 +119,34 @@ int RunSonar(const CommandArgs& argv) {
     throw OptionError(why.substr(0, colon), why.substr(colon + 2));
   }
 
+  SonarImageRunOptions image_options;
+  image_options.run.ekf = options.ekf;
+  image_options.run.ekf.confirm_views = static_cast<int>(a.GetInt("confirm", 3));
+  image_options.tracker.gate_probability = a.GetDouble("gate", image_options.tracker.gate_probability);
+  image_options.tracker.drop_misses = static_cast<int>(a.GetInt("drop-misses", image_options.tracker.drop_misses));
+  image_options.detector.min_contrast = a.GetDouble("min-contrast", image_options.detector.min_contrast);
+  if (!image_options.Check(&why)) {
+    const auto colon = why.find(':');
+    throw OptionError(why.substr(0, colon), why.substr(colon + 2));
+  }
+
   const std::string dir = SequenceFolder(a.positionals()[0]);
   const AcousticSequence seq = ReadAcousticSequence(dir);
+  const bool from_images = a.Has("from-images") || (!a.Has("from-measurements") && !seq.has_measurements);
+  if (from_images && !seq.image) throw UsageError("'" + dir + "' has no images (a version 1 sequence)");
+  if (!from_images && !seq.has_measurements) {
+    throw UsageError("'" + dir + "' has no measurements.csv; its features can only come from its images");
+  }
   ConsoleProgress progress(a.Has("quiet"));
-  const SonarRunResult r = RunSonarSequence(seq, options, &progress);
+  std::optional<SonarImageRunResult> images;
+  if (from_images) {
+    images = RunSonarImages(seq, dir, image_options, &progress);
+    options = image_options.run;
+  }
+  const SonarRunResult r = images ? images->run : RunSonarSequence(seq, options, &progress);
   progress.Finish();
   std::filesystem::create_directories(out);
+  if (images) WriteSonarDetections(*images, (std::filesystem::path(out) / "detections.csv").string());
 
   // poses.csv
   std::vector<std::string> head = {"step"};
@@ -187,6 +230,7 @@ int RunSonar(const CommandArgs& argv) {
   sum.Set("format", Json("hull-sonar-result"));
   sum.Set("version", Json(1));
   sum.Set("sequence", Json(dir));
+  sum.Set("source", Json(from_images ? "images" : "measurements"));
   Json opt = Json::Object();
   opt.Set("init", Json(SonarInitName(options.ekf.init)));
   opt.Set("hypotheses", Json(options.ekf.hypotheses));
@@ -194,6 +238,7 @@ int RunSonar(const CommandArgs& argv) {
   opt.Set("max_delay_steps", Json(options.ekf.max_delay_steps));
   opt.Set("paper_elevation_sigma_fraction", Json(options.ekf.paper_elevation_sigma_fraction));
   opt.Set("joseph", Json(options.ekf.joseph));
+  opt.Set("confirm_views", Json(options.ekf.confirm_views));
   sum.Set("options", std::move(opt));
   sum.Set("steps", Json(static_cast<int>(r.steps.size())));
   sum.Set("measurements", Json(static_cast<std::int64_t>(seq.measurements.size())));
@@ -246,6 +291,7 @@ int RunSonar(const CommandArgs& argv) {
     t.Set("final_feature_errors", std::move(per));
     sum.Set("truth", std::move(t));
   }
+  if (images) sum.Set("images", SonarImageSummary(*images));
   WriteFileAtomic((std::filesystem::path(out) / "summary.json").string(), sum.Dump());
 
   std::printf("%s: %zu steps, %zu features (%d in the state), %s initialisation, %.1f steps/s\n", dir.c_str(),
@@ -256,7 +302,12 @@ int RunSonar(const CommandArgs& argv) {
     std::printf("final mean feature error %.4f m; position error %.4f m (dead reckoning %.4f m)\n",
                 e.mean_feature_error, e.position, e.dr_position);
   }
-  std::printf("wrote %s/{poses.csv,features.csv,summary.json}\n", out.c_str());
+  if (images && images->has_truth) {
+    const SonarImageEvaluation& e = images->evaluation;
+    std::printf("from images: %.1f %% of the visible true features detected per frame, %d of %d associations wrong\n",
+                100 * e.mean_detection_rate, e.wrong_associations, e.associations);
+  }
+  std::printf("wrote %s/{poses.csv,features.csv,summary.json%s}\n", out.c_str(), images ? ",detections.csv" : "");
   return kExitOk;
 }
 

@@ -13,9 +13,11 @@ namespace {
 const char* kHelp = R"(usage: hullinspect-cli validate PATH [--all]
 
 Checks a survey bundle (a folder with survey.json) or an acoustic sequence (a
-folder with sonar.json) against the survey contract, version 1. Prints a
-summary and the first problems; --all prints every problem. Each problem names
-the file, line, column and field.
+folder with sonar.json) against the survey contract, versions 1 and 2 (version
+2: every image in images/ is decoded and checked for its size and a bit depth
+and channel count shared by all; a missing image is a dropped frame, a
+warning). Prints a summary and the first problems; --all prints every problem.
+Each problem names the file, line, column and field.
 
 exit codes: 0 valid (warnings allowed), 1 errors found, 2 bad command line
 )";

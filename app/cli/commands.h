@@ -17,5 +17,7 @@ int RunAdjust(const CommandArgs& args);    // cmd_adjust.cc   (model-assisted BA
 int RunMap(const CommandArgs& args);       // cmd_map.cc      (shapes, fusion, assessment)
 int RunPipeline(const CommandArgs& args);  // cmd_run.cc      (align -> adjust -> map: the headless main job)
 int RunSonar(const CommandArgs& args);     // cmd_sonar.cc    (imaging-sonar EKF)
+int RunExport(const CommandArgs& args);    // cmd_export.cc   (the remeshed model in other formats)
+int RunPlugins(const CommandArgs& args);   // cmd_plugins.cc  (what loaded, what was refused)
 
 }  // namespace hull::cli

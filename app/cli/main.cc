@@ -9,6 +9,7 @@
 #include "base/error.h"
 #include "cli/args.h"
 #include "cli/commands.h"
+#include "plugin/plugin_registry.h"
 
 namespace {
 
@@ -27,6 +28,9 @@ const Command kCommands[] = {
     {"adjust", hull::cli::RunAdjust, "model-assisted bundle adjustment (naive, all-on-surface, max-mixture)"},
     {"map", hull::cli::RunMap, "shapes of foreign structure, remeshed hull, fouling assessment"},
     {"sonar", hull::cli::RunSonar, "reconstruct features from an acoustic sequence with the sonar EKF"},
+    {"export", hull::cli::RunExport,
+     "write the remeshed model of results as PLY, OBJ, STL or a plugin's format (glTF)"},
+    {"plugins", hull::cli::RunPlugins, "list the plugins loaded and refused, their formats and options"},
 };
 
 void PrintUsage() {
@@ -36,7 +40,8 @@ void PrintUsage() {
       "commands:\n");
   for (const auto& c : kCommands) std::printf("  %-10s %s\n", c.name, c.summary);
   std::printf(
-      "\nRun 'hullinspect-cli <command> --help' for a command's options.\n\n"
+      "\nRun 'hullinspect-cli <command> --help' for a command's options.\n"
+      "Every command takes --plugin-option <plugin>.<key>=<value> (see 'hullinspect-cli plugins').\n\n"
       "exit codes: 0 success, 1 the work failed, 2 bad command line,\n"
       "            3 unreadable or malformed input, 130 cancelled\n");
 }
@@ -49,13 +54,17 @@ int main(int argc, char** argv) {
     return argc < 2 ? hull::cli::kExitUsage : hull::cli::kExitOk;
   }
   if (!std::strcmp(argv[1], "--version")) {
-    std::printf("hullinspect-cli 0.1.0\n");
+    std::printf("hullinspect-cli %s (plugin ABI %d)\n", HI_VERSION, hull::plugin::kAbiVersion);
     return hull::cli::kExitOk;
   }
-  const std::vector<std::string> args(argv + 2, argv + argc);
   for (const auto& c : kCommands) {
     if (std::strcmp(argv[1], c.name) != 0) continue;
     try {
+      // Plugins load before every command, so a format a plugin reads works
+      // everywhere; --plugin-option is taken out of the command's arguments.
+      hull::plugin::LoadDefaultPlugins();
+      const std::vector<std::string> args =
+          hull::plugin::TakePluginOptions({argv + 2, argv + argc}, hull::plugin::Registry::Global());
       return c.run(args);
     } catch (const hull::cli::UsageError& e) {
       std::fprintf(stderr, "hullinspect-cli %s: %s\n(see 'hullinspect-cli %s --help')\n", c.name, e.what(), c.name);

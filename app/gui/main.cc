@@ -5,7 +5,11 @@
 #include <QApplication>
 #include <QGuiApplication>
 #include <cstdio>
+#include <string>
+#include <vector>
 
+#include "base/error.h"
+#include "plugin/plugin_registry.h"
 #include "ui/app/app_setup.h"
 #include "ui/app/command_line.h"
 #include "ui/app/main_window.h"
@@ -16,8 +20,18 @@ constexpr int kExitUsage = 2;  // as hullinspect-cli: bad command line, or no di
 }
 
 int main(int argc, char** argv) {
+  // Plugins first: the mesh, survey and export formats they add work in the
+  // window and the headless job alike; --plugin-option is taken out here.
+  hull::plugin::LoadDefaultPlugins();
+  std::vector<std::string> args;
+  try {
+    args = hull::plugin::TakePluginOptions({argv + 1, argv + argc}, hull::plugin::Registry::Global());
+  } catch (const hull::OptionError& e) {
+    std::fprintf(stderr, "hullinspect: %s\n", e.what());
+    return kExitUsage;
+  }
   QStringList arguments;
-  for (int i = 1; i < argc; ++i) arguments << QString::fromLocal8Bit(argv[i]);
+  for (const std::string& a : args) arguments << QString::fromLocal8Bit(a.c_str());
   // The headless main job: no window, the report's figures drawn offscreen
   // (QPainter, no VTK), so Qt needs no X server.
   if (hull::report::IsBatchCommand(arguments) ||

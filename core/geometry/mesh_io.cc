@@ -23,6 +23,7 @@
 #include "base/csv.h"
 #include "base/error.h"
 #include "base/file_io.h"
+#include "geometry/mesh_plugins.h"
 
 namespace hull {
 namespace {
@@ -711,8 +712,6 @@ RawMesh ReadOff(std::string_view data, const std::string& file) {
 
 // ---- assimp ------------------------------------------------------------------
 
-bool OwnFormat(const std::string& ext) { return ext == ".stl" || ext == ".ply" || ext == ".obj" || ext == ".off"; }
-
 RawMesh ReadWithAssimp(const std::string& data, const std::string& file, const std::string& ext) {
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices;
   // A plain file is read by name so that files it refers to (a glTF's .bin,
@@ -754,7 +753,12 @@ RawMesh ReadWithAssimp(const std::string& data, const std::string& file, const s
   return m;
 }
 
-RawMesh ReadAny(const std::string& path) {
+// `report`, when given, receives what a plugin importer reported.
+RawMesh ReadAny(const std::string& path, std::vector<std::pair<std::string, std::string>>* report = nullptr) {
+  if (auto p = ReadMeshWithPlugin(path)) {  // a plugin outbids the readers below
+    if (report) *report = std::move(p->report);
+    return {std::move(p->vertices), std::move(p->faces), std::move(p->scalars), p->soup};
+  }
   const std::string data = ReadFileToString(path);
   if (data.empty()) FailFile(path, "the file is empty; expected a mesh");
   const std::string ext = MeshExtension(path);
@@ -904,7 +908,7 @@ TriangleMesh LoadMesh(const std::string& path, const MeshLoadOptions& options) {
   if (!std::isfinite(options.scale) || options.scale == 0) {
     throw OptionError("scale", "must be finite and non-zero, got " + FormatDouble(options.scale));
   }
-  RawMesh raw = ReadAny(path);
+  RawMesh raw = ReadAny(path, options.import_report);
   if (raw.faces.empty()) {
     FailFile(path, raw.vertices.empty() ? "the file contains no geometry; expected a triangle mesh"
                                         : "the file has " + std::to_string(raw.vertices.size()) +
@@ -972,11 +976,6 @@ void SaveMesh(const TriangleMesh& mesh, const std::string& path, const MeshSaveO
   WriteFileAtomic(path, data);
 }
 
-bool IsMeshFile(const std::string& path) {
-  const std::string ext = MeshExtension(path);
-  if (ext.empty()) return false;
-  if (OwnFormat(ext)) return true;
-  return aiIsExtensionSupported(ext.c_str()) == AI_TRUE;
-}
+bool IsMeshFile(const std::string& path) { return BuiltinMeshScore(MeshExtension(path)) > 0 || PluginReadsMesh(path); }
 
 }  // namespace hull

@@ -4,13 +4,15 @@
 // types, polygons triangulated), OBJ and OFF by our own double-precision
 // readers (so a bundle's mesh reads back bit-identical and errors name the
 // line), everything else assimp reads (glTF/GLB, DAE, 3DS, FBX, ...); any of
-// them gzip-compressed ("hull.stl.gz"). Write: PLY (binary or ASCII, with the
+// them gzip-compressed ("hull.stl.gz"), and what run-time plugins read (STEP,
+// IGES: geometry/mesh_plugins.h) when they outbid these readers. Write: PLY (binary or ASCII, with the
 // per-vertex scalars such as "deviation", readable by CloudCompare and
 // ParaView), OBJ and STL (binary).
 #pragma once
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/pose.h"
@@ -31,6 +33,9 @@ struct MeshLoadOptions {
   bool orient_outward = true;
   // Filled with what orientation found, if not null.
   OrientationReport* orientation = nullptr;
+  // Filled with what a plugin importer reported (e.g. {"unit", "millimetre"},
+  // {"surfaces", "12"}), if not null; left empty by the built-in readers.
+  std::vector<std::pair<std::string, std::string>>* import_report = nullptr;
 };
 
 // Throws InputError naming the file (and line, for text formats); a file
@@ -53,7 +58,8 @@ struct MeshSaveOptions {
 // std::invalid_argument for another extension or an inconsistent mesh.
 void SaveMesh(const TriangleMesh& mesh, const std::string& path, const MeshSaveOptions& options = {});
 
-// True when the extension is one LoadMesh reads (including through assimp).
+// True when LoadMesh reads the file: by its extension (including through
+// assimp), or a plugin bids for it.
 bool IsMeshFile(const std::string& path);
 
 }  // namespace hull

@@ -8,15 +8,15 @@
 #include "geometry/mesh_io.h"
 #include "mapping/mapper.h"
 #include "mapping/mapping_input.h"
-#include "survey/survey_io.h"
+#include "survey/survey_import.h"
 
 namespace hull {
 namespace fs = std::filesystem;
 
 PipelineInputs LoadPipelineInputs(const std::string& bundle_dir, const std::string& mesh_path, double mesh_scale) {
   PipelineInputs in;
-  in.bundle = ReadSurveyBundle(bundle_dir);
-  in.bundle_path = fs::absolute(bundle_dir).string();
+  in.bundle = OpenSurveyBundle(bundle_dir);  // a bundle folder, or a survey a plugin converts
+  in.bundle_path = fs::absolute(in.bundle.directory).string();
   const std::string mesh = mesh_path.empty() ? in.bundle.ModelHintPath() : mesh_path;
   if (mesh.empty()) {
     throw InputError({(fs::path(bundle_dir) / "survey.json").string(), 0, 0, "model_hint"},

@@ -1,6 +1,7 @@
 #include "simulate/sonar_simulator.h"
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "base/error.h"
@@ -89,6 +90,83 @@ std::vector<Vector6d> PrismTrajectory(const SonarSimulationOptions& o, int T, co
   return poses;
 }
 
+// Controls, measurements and the initial pose with the contract's noise for
+// the true poses and features; feature i is measured at step k when it is
+// inside the field of view and, when given, visible(k, i).
+AcousticSequence DrawSequence(const SonarSimulationOptions& o, const std::string& name,
+                              const std::vector<Vector6d>& poses, const std::vector<Eigen::Vector3d>& features,
+                              const std::function<bool(int, int)>& visible, Gaussian& rng) {
+  AcousticSequence seq;
+  seq.name = name;
+  seq.sensor = o.sensor;
+  seq.motion_noise = o.motion_noise;
+  seq.initial_pose_sigma = o.initial_pose_sigma;
+  SonarTruth truth;
+  truth.poses = poses;
+  truth.features = features;
+  for (std::size_t i = 0; i < features.size(); ++i) truth.feature_ids.push_back(static_cast<std::int64_t>(i));
+
+  const double noise = o.noise ? 1.0 : 0.0;
+  for (int i = 0; i < 6; ++i) seq.initial_pose[i] = poses[0][i] + noise * o.initial_pose_sigma[i] * rng.Normal();
+  for (int i = 3; i < 6; ++i) seq.initial_pose[i] = WrapAngle(seq.initial_pose[i]);
+
+  // Draws until the sample's noise level is within kLevel of its sigma (see the header).
+  constexpr double kLevel = 0.15;
+  constexpr int kMaxDraws = 1000;
+  const auto typical = [&](double sum_squares, std::size_t n) {
+    return n == 0 || !o.noise || std::fabs(std::sqrt(sum_squares / static_cast<double>(n)) - 1) <= kLevel;
+  };
+  for (int draw = 0; draw < kMaxDraws; ++draw) {
+    seq.controls.clear();
+    double ss = 0;
+    for (std::size_t k = 1; k < poses.size(); ++k) {
+      const Vector6d u_true = OplusEuler<double>(OminusEuler<double>(poses[k - 1]), poses[k]);
+      SonarControl c;
+      c.step = static_cast<std::int64_t>(k);
+      for (int i = 0; i < 6; ++i) {
+        const bool translation = i < 3;
+        const double rate = translation ? o.motion_noise.translation_per_metre : o.motion_noise.rotation_per_radian;
+        const double floor = translation ? o.motion_noise.translation_floor : o.motion_noise.rotation_floor;
+        const double sigma = std::max(floor, rate * std::fabs(u_true[i]));
+        const double n = rng.Normal();
+        ss += n * n;
+        c.u[i] = u_true[i] + noise * sigma * n;
+      }
+      c.u[3] = WrapAngle(c.u[3]);
+      c.u[5] = WrapAngle(c.u[5]);
+      seq.controls.push_back(c);
+    }
+    if (typical(ss, 6 * seq.controls.size())) break;
+  }
+
+  const SonarSensor& s = o.sensor;
+  for (int draw = 0; draw < kMaxDraws; ++draw) {
+    seq.measurements.clear();
+    double ss_range = 0, ss_azimuth = 0;
+    for (std::size_t k = 0; k < poses.size(); ++k) {
+      for (std::size_t i = 0; i < features.size(); ++i) {
+        const Eigen::Vector3d polar = Polar(poses[k], features[i]);
+        const bool inside = polar[0] >= s.range_min && polar[0] <= s.range_max &&
+                            std::fabs(polar[1]) <= s.azimuth_fov / 2 && std::fabs(polar[2]) <= s.elevation_fov / 2;
+        if (!inside || (visible && !visible(static_cast<int>(k), static_cast<int>(i)))) continue;
+        const double nr = rng.Normal(), na = rng.Normal();
+        SonarMeasurement m;
+        m.step = static_cast<std::int64_t>(k);
+        m.feature = truth.feature_ids[i];
+        m.range = polar[0] + noise * s.range_sigma * nr;
+        m.azimuth = polar[1] + noise * s.azimuth_sigma * na;
+        if (m.range < s.range_min || m.range > s.range_max || std::fabs(m.azimuth) > s.azimuth_fov / 2) continue;
+        ss_range += nr * nr;
+        ss_azimuth += na * na;
+        seq.measurements.push_back(m);
+      }
+    }
+    if (typical(ss_range, seq.measurements.size()) && typical(ss_azimuth, seq.measurements.size())) break;
+  }
+  seq.truth = std::move(truth);
+  return seq;
+}
+
 }  // namespace
 
 const char* SonarPresetName(SonarPreset preset) {
@@ -145,126 +223,84 @@ bool SonarSimulationOptions::Check(std::string* why) const {
   return true;
 }
 
-AcousticSequence SimulateSonar(const SonarSimulationOptions& o) {
+SonarLayout MakeSonarLayout(const SonarSimulationOptions& o) {
   std::string why;
   if (!o.Check(&why)) {
     const auto colon = why.find(':');
     throw OptionError(why.substr(0, colon), why.substr(colon + 2));
   }
-  Gaussian rng(o.seed);
-  AcousticSequence seq;
-  seq.sensor = o.sensor;
-  seq.motion_noise = o.motion_noise;
-  seq.initial_pose_sigma = o.initial_pose_sigma;
-
-  std::vector<Vector6d> poses;
-  std::vector<Eigen::Vector3d> features;
-  Eigen::Vector3d centre;
+  SonarLayout l;
+  const double a = 0.1, h = 0.15;  // the prism: 0.2 x 0.2 x 0.3 m
   switch (o.preset) {
     case SonarPreset::kPrism: {
       const int T = o.num_steps > 0 ? o.num_steps : 21;
-      centre = Eigen::Vector3d(o.distance, 0, 0);
-      features = PrismVertices(centre);
-      poses = PrismTrajectory(o, T, centre, 0.0, 0.0);
-      seq.name = "prism: the simulation of Mai et al. (square prism, 8 vertices)";
+      l.centre = Eigen::Vector3d(o.distance, 0, 0);
+      l.features = PrismVertices(l.centre);
+      l.poses = PrismTrajectory(o, T, l.centre, 0.0, 0.0);
+      l.name = "prism: the simulation of Mai et al. (square prism, 8 vertices)";
       break;
     }
     case SonarPreset::kAbove: {
       const int T = o.num_steps > 0 ? o.num_steps : 21;
-      centre = Eigen::Vector3d(o.above_distance, 0, o.above_height);
-      features = PrismVertices(centre);
-      poses = PrismTrajectory(o, T, centre, o.above_height, o.above_centre_elevation);
-      seq.name = "above: the prism seen from above its centre (every elevation of one sign)";
+      l.centre = Eigen::Vector3d(o.above_distance, 0, o.above_height);
+      l.features = PrismVertices(l.centre);
+      l.poses = PrismTrajectory(o, T, l.centre, o.above_height, o.above_centre_elevation);
+      l.name = "above: the prism seen from above its centre (every elevation of one sign)";
       break;
     }
     case SonarPreset::kTank: {
       const int T = o.num_steps > 0 ? o.num_steps : 8;
       const Eigen::Vector3d bore(std::cos(o.tank_pitch), 0, -std::sin(o.tank_pitch));
-      centre = o.distance * bore;
+      l.centre = o.distance * bore;
+      const Eigen::Vector3d& c = l.centre;
       if (o.tank_face == TankFace::kFront) {
         // The vertical face toward the sonar: A top-left, B top-right, C bottom-right, D bottom-left.
-        features = {centre + Eigen::Vector3d(0, -0.1, -0.15), centre + Eigen::Vector3d(0, 0.1, -0.15),
-                    centre + Eigen::Vector3d(0, 0.1, 0.15), centre + Eigen::Vector3d(0, -0.1, 0.15)};
+        l.features = {c + Eigen::Vector3d(0, -0.1, -0.15), c + Eigen::Vector3d(0, 0.1, -0.15),
+                      c + Eigen::Vector3d(0, 0.1, 0.15), c + Eigen::Vector3d(0, -0.1, 0.15)};
+        l.object = Eigen::AlignedBox3d(c + Eigen::Vector3d(0, -a, -h), c + Eigen::Vector3d(2 * a, a, h));
       } else {
         // The top face: A, B near, C, D far (AD and BC point away from the sonar).
-        features = {centre + Eigen::Vector3d(-0.1, -0.1, 0), centre + Eigen::Vector3d(-0.1, 0.1, 0),
-                    centre + Eigen::Vector3d(0.1, 0.1, 0), centre + Eigen::Vector3d(0.1, -0.1, 0)};
+        l.features = {c + Eigen::Vector3d(-0.1, -0.1, 0), c + Eigen::Vector3d(-0.1, 0.1, 0),
+                      c + Eigen::Vector3d(0.1, 0.1, 0), c + Eigen::Vector3d(0.1, -0.1, 0)};
+        l.object = Eigen::AlignedBox3d(c + Eigen::Vector3d(-a, -a, 0), c + Eigen::Vector3d(a, a, 2 * h));
       }
-      for (int k = 0; k < T; ++k) poses.push_back(MakePose(0, 0, 0, WrapAngle(k * o.tank_roll_step), o.tank_pitch, 0));
-      seq.name = "tank: the tank experiment of Mai et al. (tilted 20 deg, rolled 0..70 deg, 4 vertices)";
+      for (int k = 0; k < T; ++k) {
+        l.poses.push_back(MakePose(0, 0, 0, WrapAngle(k * o.tank_roll_step), o.tank_pitch, 0));
+      }
+      l.name = "tank: the tank experiment of Mai et al. (tilted 20 deg, rolled 0..70 deg, 4 vertices)";
       break;
     }
   }
+  if (o.preset != SonarPreset::kTank) {
+    l.object = Eigen::AlignedBox3d(l.centre - Eigen::Vector3d(a, a, h), l.centre + Eigen::Vector3d(a, a, h));
+  }
+  // Every corner of the prism, the preset's features first.
+  l.object_vertices = l.features;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector3d corner = l.object.corner(static_cast<Eigen::AlignedBox3d::CornerType>(i));
+    bool known = false;
+    for (const Eigen::Vector3d& f : l.features) known = known || (f - corner).norm() < 1e-9;
+    if (!known) l.object_vertices.push_back(corner);
+  }
+  return l;
+}
+
+AcousticSequence SimulateSonar(const SonarSimulationOptions& o) {
+  SonarLayout l = MakeSonarLayout(o);
+  Gaussian rng(o.seed);
   for (int i = 0; i < o.extra_features; ++i) {
     Eigen::Vector3d p;
-    for (int a = 0; a < 3; ++a) p[a] = centre[a] + (rng.Uniform() - 0.5) * o.extra_box[a];
-    features.push_back(p);
+    for (int a = 0; a < 3; ++a) p[a] = l.centre[a] + (rng.Uniform() - 0.5) * o.extra_box[a];
+    l.features.push_back(p);
   }
+  return DrawSequence(o, l.name, l.poses, l.features, nullptr, rng);
+}
 
-  SonarTruth truth;
-  truth.poses = poses;
-  truth.features = features;
-  for (std::size_t i = 0; i < features.size(); ++i) truth.feature_ids.push_back(static_cast<std::int64_t>(i));
-
-  const double noise = o.noise ? 1.0 : 0.0;
-  for (int i = 0; i < 6; ++i) seq.initial_pose[i] = poses[0][i] + noise * o.initial_pose_sigma[i] * rng.Normal();
-  for (int i = 3; i < 6; ++i) seq.initial_pose[i] = WrapAngle(seq.initial_pose[i]);
-
-  // Draws until the sample's noise level is within kLevel of its sigma (see the header).
-  constexpr double kLevel = 0.15;
-  constexpr int kMaxDraws = 1000;
-  const auto typical = [&](double sum_squares, std::size_t n) {
-    return n == 0 || !o.noise || std::fabs(std::sqrt(sum_squares / static_cast<double>(n)) - 1) <= kLevel;
-  };
-  for (int draw = 0; draw < kMaxDraws; ++draw) {
-    seq.controls.clear();
-    double ss = 0;
-    for (std::size_t k = 1; k < poses.size(); ++k) {
-      const Vector6d u_true = OplusEuler<double>(OminusEuler<double>(poses[k - 1]), poses[k]);
-      SonarControl c;
-      c.step = static_cast<std::int64_t>(k);
-      for (int i = 0; i < 6; ++i) {
-        const bool translation = i < 3;
-        const double rate = translation ? o.motion_noise.translation_per_metre : o.motion_noise.rotation_per_radian;
-        const double floor = translation ? o.motion_noise.translation_floor : o.motion_noise.rotation_floor;
-        const double sigma = std::max(floor, rate * std::fabs(u_true[i]));
-        const double n = rng.Normal();
-        ss += n * n;
-        c.u[i] = u_true[i] + noise * sigma * n;
-      }
-      c.u[3] = WrapAngle(c.u[3]);
-      c.u[5] = WrapAngle(c.u[5]);
-      seq.controls.push_back(c);
-    }
-    if (typical(ss, 6 * seq.controls.size())) break;
-  }
-
-  const SonarSensor& s = o.sensor;
-  for (int draw = 0; draw < kMaxDraws; ++draw) {
-    seq.measurements.clear();
-    double ss_range = 0, ss_azimuth = 0;
-    for (std::size_t k = 0; k < poses.size(); ++k) {
-      for (std::size_t i = 0; i < features.size(); ++i) {
-        const Eigen::Vector3d polar = Polar(poses[k], features[i]);
-        const bool inside = polar[0] >= s.range_min && polar[0] <= s.range_max &&
-                            std::fabs(polar[1]) <= s.azimuth_fov / 2 && std::fabs(polar[2]) <= s.elevation_fov / 2;
-        if (!inside) continue;
-        const double nr = rng.Normal(), na = rng.Normal();
-        SonarMeasurement m;
-        m.step = static_cast<std::int64_t>(k);
-        m.feature = truth.feature_ids[i];
-        m.range = polar[0] + noise * s.range_sigma * nr;
-        m.azimuth = polar[1] + noise * s.azimuth_sigma * na;
-        if (m.range < s.range_min || m.range > s.range_max || std::fabs(m.azimuth) > s.azimuth_fov / 2) continue;
-        ss_range += nr * nr;
-        ss_azimuth += na * na;
-        seq.measurements.push_back(m);
-      }
-    }
-    if (typical(ss_range, seq.measurements.size()) && typical(ss_azimuth, seq.measurements.size())) break;
-  }
-  seq.truth = std::move(truth);
-  return seq;
+AcousticSequence SimulateSonarSequence(const SonarSimulationOptions& o, const std::string& name,
+                                       const std::vector<Vector6d>& poses, const std::vector<Eigen::Vector3d>& features,
+                                       const std::function<bool(int, int)>& visible) {
+  Gaussian rng(o.seed);
+  return DrawSequence(o, name, poses, features, visible, rng);
 }
 
 AcousticSequence SimulateSonarPreset(const std::string& preset, std::uint64_t seed) {

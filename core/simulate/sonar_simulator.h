@@ -42,8 +42,11 @@
 // (std::mt19937_64 and an own Box-Muller).
 #pragma once
 
+#include <Eigen/Geometry>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "survey/acoustic_sequence.h"
 
@@ -96,6 +99,27 @@ struct SonarSimulationOptions {
 // Simulates an acoustic sequence with truth (throws OptionError when
 // options.Check() fails).
 AcousticSequence SimulateSonar(const SonarSimulationOptions& options);
+
+// The geometry of a layout without noise: the true poses, the preset's
+// features and the prism.
+struct SonarLayout {
+  std::string name;
+  std::vector<Vector6d> poses;                       // per step, world frame (z down)
+  std::vector<Eigen::Vector3d> features;             // the preset's features (without extra_features)
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // of the prism (tank: of the featured face)
+  Eigen::AlignedBox3d object;                        // the prism, axis-aligned
+  std::vector<Eigen::Vector3d> object_vertices;      // its 8 corners, the preset's features first
+};
+// Throws OptionError when options.Check() fails.
+SonarLayout MakeSonarLayout(const SonarSimulationOptions& options);
+
+// SimulateSonar's noise (initial pose, controls, measurements; seeded by
+// options.seed) for given true poses and features: feature i is measured at
+// step k when it is inside the field of view and visible(k, i) (e.g. not
+// occluded in a scene).
+AcousticSequence SimulateSonarSequence(const SonarSimulationOptions& options, const std::string& name,
+                                       const std::vector<Vector6d>& poses, const std::vector<Eigen::Vector3d>& features,
+                                       const std::function<bool(int, int)>& visible);
 
 // The presets with their defaults: "prism", "tank" or "above" (throws
 // OptionError on another name). For hullinspect-cli simulate.

@@ -1,11 +1,8 @@
 #include "sonar/sonar_ekf.h"
 
-#include <ceres/jet.h>
-
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <stdexcept>
 #include <unordered_set>
 
@@ -14,20 +11,6 @@
 
 namespace hull {
 namespace {
-
-// A feature about to enter the state: its mean, the Jacobian of the inverse
-// model with respect to the pose block at pose_offset (the current pose or an
-// anchor clone) and the covariance contributed by the measurement and the
-// elevation prior (J_polar diag(.) J_polar^T).
-struct NewFeature {
-  std::int64_t id = 0;
-  std::int64_t first_step = 0;
-  int observations = 1;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  Eigen::Matrix<double, 3, 6> J_pose = Eigen::Matrix<double, 3, 6>::Zero();
-  int pose_offset = 0;
-  Eigen::Matrix3d polar_cov = Eigen::Matrix3d::Zero();
-};
 
 // Columns [c, c + W) of a symmetric matrix of which only the lower triangle is current.
 template <int W>
@@ -47,33 +30,6 @@ void WrapPoseAngles(Eigen::VectorXd& x, int offset) {
 }
 
 }  // namespace
-
-const char* SonarInitName(SonarInit init) { return init == SonarInit::kPaper ? "paper" : "hypotheses"; }
-
-SonarInit ParseSonarInit(const std::string& name) {
-  if (name == "paper") return SonarInit::kPaper;
-  if (name == "hypotheses") return SonarInit::kHypotheses;
-  throw OptionError("init", "unknown initialisation '" + name + "'; expected 'paper' or 'hypotheses'");
-}
-
-bool SonarEkfOptions::Check(std::string* why) const {
-  auto fail = [&](const std::string& field, const std::string& reason) {
-    if (why) *why = field + ": " + reason;
-    return false;
-  };
-  if (!(paper_elevation_sigma_fraction > 0 && paper_elevation_sigma_fraction <= 1)) {
-    return fail("paper_elevation_sigma_fraction", "must be in (0, 1]");
-  }
-  if (hypotheses < 3 || hypotheses > 1000) return fail("hypotheses", "must be between 3 and 1000");
-  if (!(collapse_probability > 0.5 && collapse_probability < 1)) {
-    return fail("collapse_probability", "must be in (0.5, 1)");
-  }
-  if (min_extra_views < 1) return fail("min_extra_views", "must be at least 1 (a second view)");
-  if (max_delay_steps < 1) return fail("max_delay_steps", "must be at least 1");
-  if (!(prune_ratio >= 0 && prune_ratio < 1)) return fail("prune_ratio", "must be in [0, 1)");
-  if (update_block < 1) return fail("update_block", "must be at least 1");
-  return true;
-}
 
 SonarEkf::SonarEkf(const SonarSensor& sensor, const SonarMotionNoise& motion_noise, const Vector6d& initial_pose,
                    const Vector6d& initial_pose_sigma, SonarEkfOptions options)
@@ -100,6 +56,14 @@ int SonarEkf::FeatureOffset(std::int64_t id) const {
 }
 
 SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<SonarMeasurement>& measurements) {
+  if (!predicted_) CheckMeasurements(measurements, step_ + 1);  // refuse before changing anything
+  Predict(control);
+  return Correct(measurements);
+}
+
+void SonarEkf::Predict(const SonarControl* control) {
+  if (predicted_)
+    throw std::invalid_argument("SonarEkf::Predict: step " + std::to_string(step_) + " was not corrected");
   if (step_ < 0 && control) throw std::invalid_argument("SonarEkf::Step: the first step has no control");
   if (step_ >= 0 && !control) {
     throw std::invalid_argument("SonarEkf::Step: step " + std::to_string(step_ + 1) + " needs its control");
@@ -109,7 +73,17 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
                                 " given at step " + std::to_string(step_ + 1));
   }
   if (control && !control->u.allFinite()) throw std::invalid_argument("SonarEkf::Step: control is not finite");
-  const std::int64_t step = step_ + 1;
+  ++step_;
+  predicted_ = true;
+  if (control) PredictPose(*control);
+}
+
+Eigen::Vector2d SonarEkf::NoiseOf(const SonarMeasurement& m) const {
+  return {m.range_sigma > 0 ? m.range_sigma : sensor_.range_sigma,
+          m.azimuth_sigma > 0 ? m.azimuth_sigma : sensor_.azimuth_sigma};
+}
+
+void SonarEkf::CheckMeasurements(const std::vector<SonarMeasurement>& measurements, std::int64_t step) const {
   std::unordered_set<std::int64_t> ids;
   for (const SonarMeasurement& m : measurements) {
     if (m.step != step) {
@@ -119,13 +93,18 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
     if (!ids.insert(m.feature).second) {
       throw std::invalid_argument("SonarEkf::Step: feature " + std::to_string(m.feature) + " measured twice");
     }
-    if (!std::isfinite(m.range) || !std::isfinite(m.azimuth) || m.range <= 0) {
+    if (!std::isfinite(m.range) || !std::isfinite(m.azimuth) || m.range <= 0 || !(m.range_sigma >= 0) ||
+        !(m.azimuth_sigma >= 0) || !std::isfinite(m.range_sigma) || !std::isfinite(m.azimuth_sigma)) {
       throw std::invalid_argument("SonarEkf::Step: measurement of feature " + std::to_string(m.feature) +
-                                  " is not a finite positive range and finite azimuth");
+                                  " is not a finite positive range and finite azimuth with finite sigmas");
     }
   }
-  step_ = step;
-  if (control) Predict(*control);
+}
+
+SonarStepEstimate SonarEkf::Correct(const std::vector<SonarMeasurement>& measurements) {
+  if (!predicted_) throw std::invalid_argument("SonarEkf::Correct: call Predict first");
+  CheckMeasurements(measurements, step_);
+  predicted_ = false;
 
   std::vector<Obs> in_state;
   std::vector<const SonarMeasurement*> fresh;
@@ -133,7 +112,7 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
   for (const SonarMeasurement& m : measurements) {
     auto f = features_.find(m.feature);
     if (f != features_.end()) {
-      in_state.push_back(Obs{0, f->second.offset, m.range, m.azimuth});
+      in_state.push_back(Obs{0, f->second.offset, m.range, m.azimuth, NoiseOf(m)});
       ++f->second.observations;
       continue;
     }
@@ -154,18 +133,24 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
     out.updated = static_cast<int>(in_state.size());
   }
   const int before = num_features_in_state();
-  if (options_.init == SonarInit::kPaper) {
+  if (options_.init == SonarInit::kPaper && options_.confirm_views <= 1) {
     InitialisePaper(fresh);
   } else {
     // Weigh the waiting features' hypotheses with this view and remember it.
     for (auto& [index, m] : waiting) {
       WeighPending(pending_[index], *m);
-      pending_[index].views.push_back(View{step_, m->range, m->azimuth});
+      pending_[index].views.push_back(View{step_, m->range, m->azimuth, NoiseOf(*m)});
     }
     std::vector<std::size_t> ready;
     std::vector<std::pair<double, double>> priors;
     for (std::size_t i = 0; i < pending_.size(); ++i) {
       const Pending& pd = pending_[i];
+      if (static_cast<int>(pd.views.size()) < options_.confirm_views) continue;
+      if (options_.init == SonarInit::kPaper) {
+        ready.push_back(i);
+        priors.emplace_back(0.0, options_.paper_elevation_sigma_fraction * sensor_.elevation_fov);
+        continue;
+      }
       const Collapse c = CollapseOf(pd);
       const int extra_views = static_cast<int>(pd.views.size()) - 1;
       if (extra_views >= options_.min_extra_views && c.mass >= options_.collapse_probability) {
@@ -190,7 +175,7 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
     for (const SonarMeasurement* m : fresh) {
       Pending pd;
       pd.id = m->feature;
-      pd.views.push_back(View{step_, m->range, m->azimuth});
+      pd.views.push_back(View{step_, m->range, m->azimuth, NoiseOf(*m)});
       for (int c = 0; c < options_.hypotheses; ++c) {
         pd.cell.push_back(c);
         pd.log_weight.push_back(0.0);
@@ -207,7 +192,7 @@ SonarStepEstimate SonarEkf::Step(const SonarControl* control, const std::vector<
   return out;
 }
 
-void SonarEkf::Predict(const SonarControl& control) {
+void SonarEkf::PredictPose(const SonarControl& control) {
   Matrix6d G, Gu;
   const Vector6d pose = SonarMotion(x_.head<6>(), control.u, &G, &Gu);
   const Vector6d sigma = ControlSigma(motion_noise_, control.u);
@@ -285,8 +270,9 @@ double SonarEkf::Update(const std::vector<Obs>& obs) {
     }
     S = (0.5 * (S + S.transpose())).eval();
     for (int i = 0; i < kb; ++i) {
-      S(2 * i, 2 * i) += sensor_.range_sigma * sensor_.range_sigma;
-      S(2 * i + 1, 2 * i + 1) += sensor_.azimuth_sigma * sensor_.azimuth_sigma;
+      const Eigen::Vector2d& sigma = obs[static_cast<std::size_t>(b0 + i)].sigma;
+      S(2 * i, 2 * i) += sigma[0] * sigma[0];
+      S(2 * i + 1, 2 * i + 1) += sigma[1] * sigma[1];
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(S);
     if (llt.info() != Eigen::Success) {
@@ -324,7 +310,7 @@ double SonarEkf::Update(const std::vector<Obs>& obs) {
   return nis;
 }
 
-void SonarEkf::Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb) {
+int SonarEkf::Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb) {
   const Eigen::Index N = x_.size(), n = b.size();
   x_.conservativeResize(N + n);
   x_.tail(n) = b;
@@ -332,6 +318,7 @@ void SonarEkf::Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const 
   P_.bottomLeftCorner(n, N) = C;
   P_.topRightCorner(N, n) = C.transpose();
   P_.bottomRightCorner(n, n) = 0.5 * (B_bb + B_bb.transpose());
+  return static_cast<int>(N);
 }
 
 void SonarEkf::RemoveBlock(int offset, int size) {
@@ -350,262 +337,6 @@ void SonarEkf::RemoveBlock(int offset, int size) {
   for (Clone& c : clones_) {
     if (c.offset > offset) c.offset -= size;
   }
-}
-
-namespace {
-
-// Adds features in one resize: C = J P(pose block, :), B_ij = J_i P(a_i, a_j) J_j^T.
-void AddFeatureBlocks(const std::vector<NewFeature>& nf, const Eigen::MatrixXd& P, Eigen::VectorXd& b,
-                      Eigen::MatrixXd& C, Eigen::MatrixXd& B) {
-  const Eigen::Index n = 3 * static_cast<Eigen::Index>(nf.size()), N = P.rows();
-  b.resize(n);
-  C.resize(n, N);
-  B.resize(n, n);
-  for (std::size_t i = 0; i < nf.size(); ++i) {
-    const auto r = 3 * static_cast<Eigen::Index>(i);
-    b.segment<3>(r) = nf[i].mean;
-    C.middleRows<3>(r).noalias() = nf[i].J_pose * P.middleRows<6>(nf[i].pose_offset);
-  }
-  for (std::size_t i = 0; i < nf.size(); ++i) {
-    for (std::size_t j = 0; j <= i; ++j) {
-      const auto ri = 3 * static_cast<Eigen::Index>(i), rj = 3 * static_cast<Eigen::Index>(j);
-      Eigen::Matrix3d Bij = C.block<3, 6>(ri, nf[j].pose_offset) * nf[j].J_pose.transpose();
-      if (i == j) Bij += nf[i].polar_cov;
-      B.block<3, 3>(ri, rj) = Bij;
-      B.block<3, 3>(rj, ri) = Bij.transpose();
-    }
-  }
-}
-
-}  // namespace
-
-void SonarEkf::InitialisePaper(const std::vector<const SonarMeasurement*>& fresh) {
-  if (fresh.empty()) return;
-  const double sigma_phi = options_.paper_elevation_sigma_fraction * sensor_.elevation_fov;
-  const Eigen::Vector3d var(sensor_.range_sigma * sensor_.range_sigma, sensor_.azimuth_sigma * sensor_.azimuth_sigma,
-                            sigma_phi * sigma_phi);
-  std::vector<NewFeature> nf;
-  for (const SonarMeasurement* m : fresh) {
-    NewFeature f;
-    f.id = m->feature;
-    f.first_step = step_;
-    Eigen::Matrix3d J_polar;
-    f.mean = SonarBackProjectJacobians(x_.head<6>(), m->range, m->azimuth, 0.0, &f.J_pose, &J_polar);
-    f.pose_offset = 0;
-    f.polar_cov = J_polar * var.asDiagonal() * J_polar.transpose();
-    nf.push_back(f);
-  }
-  Eigen::VectorXd b;
-  Eigen::MatrixXd C, B;
-  AddFeatureBlocks(nf, P_, b, C, B);
-  const int base = static_cast<int>(x_.size());
-  Append(b, C, B);
-  for (std::size_t i = 0; i < nf.size(); ++i) {
-    features_[nf[i].id] = FeatureSlot{base + 3 * static_cast<int>(i), nf[i].observations, nf[i].first_step};
-  }
-}
-
-int SonarEkf::CloneOffset(std::int64_t step) const {
-  for (const Clone& c : clones_) {
-    if (c.step == step) return c.offset;
-  }
-  return -1;
-}
-
-void SonarEkf::EnsureClone() {
-  if (!clones_.empty() && clones_.back().step == step_) return;
-  // Stochastic clone of the current pose: identical mean, fully correlated.
-  const int offset = static_cast<int>(x_.size());
-  const Eigen::VectorXd b = x_.head<6>();
-  const Eigen::MatrixXd C = P_.topRows<6>();
-  const Eigen::MatrixXd B = P_.topLeftCorner<6, 6>();
-  Append(b, C, B);
-  clones_.push_back(Clone{step_, offset, 0});
-}
-
-void SonarEkf::WeighPending(Pending& pd, const SonarMeasurement& m) const {
-  using Jet = ceres::Jet<double, 15>;
-  const View& anchor = pd.views.front();
-  const int a = CloneOffset(anchor.step);
-  // Joint covariance of (current pose, anchor clone).
-  Eigen::Matrix<double, 12, 12> Sigma;
-  Sigma.topLeftCorner<6, 6>() = P_.topLeftCorner<6, 6>();
-  Sigma.topRightCorner<6, 6>() = P_.block<6, 6>(0, a);
-  Sigma.bottomLeftCorner<6, 6>() = P_.block<6, 6>(a, 0);
-  Sigma.bottomRightCorner<6, 6>() = P_.block<6, 6>(a, a);
-  const double sigma_h = Spacing() / 2;
-  const Eigen::Vector3d polar_var(sensor_.range_sigma * sensor_.range_sigma,
-                                  sensor_.azimuth_sigma * sensor_.azimuth_sigma, sigma_h * sigma_h);
-  Eigen::Matrix<Jet, 6, 1> xt, xa;
-  for (int i = 0; i < 6; ++i) {
-    xt[i] = Jet(x_[i], i);
-    xa[i] = Jet(x_[a + i], 6 + i);
-  }
-  const Jet r0(anchor.range, 12), t0(anchor.azimuth, 13);
-  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
-    // Predicted view of hypothesis h: h(x_t, g^-1(x_a, r0, theta0, phi_h)),
-    // linearised in both poses, the first view's noise and the hypothesis' width.
-    const Eigen::Matrix<Jet, 3, 1> p = SonarBackProject<Jet>(xa, r0, t0, Jet(CellElevation(pd.cell[h]), 14));
-    const Eigen::Matrix<Jet, 2, 1> z = SonarMeasure<Jet>(xt, p);
-    Eigen::Matrix<double, 2, 12> Jx;
-    Eigen::Matrix<double, 2, 3> Jp;
-    for (int r = 0; r < 2; ++r) {
-      Jx.row(r) = z[r].v.head<12>().transpose();
-      Jp.row(r) = z[r].v.tail<3>().transpose();
-    }
-    Eigen::Matrix2d S = Jx * Sigma * Jx.transpose() + Jp * polar_var.asDiagonal() * Jp.transpose();
-    S(0, 0) += sensor_.range_sigma * sensor_.range_sigma;
-    S(1, 1) += sensor_.azimuth_sigma * sensor_.azimuth_sigma;
-    const Eigen::Vector2d nu(m.range - z[0].a, WrapAngle(m.azimuth - z[1].a));
-    pd.log_weight[h] += -0.5 * nu.dot(S.ldlt().solve(nu)) - 0.5 * std::log(S.determinant());
-  }
-  // Normalise (best = 0) and prune.
-  const double best = *std::max_element(pd.log_weight.begin(), pd.log_weight.end());
-  const double floor = options_.prune_ratio > 0 ? std::log(options_.prune_ratio) : -INFINITY;
-  std::vector<int> cell;
-  std::vector<double> lw;
-  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
-    const double l = pd.log_weight[h] - best;
-    if (l >= floor) {
-      cell.push_back(pd.cell[h]);
-      lw.push_back(l);
-    }
-  }
-  pd.cell = std::move(cell);
-  pd.log_weight = std::move(lw);
-}
-
-SonarEkf::Collapse SonarEkf::CollapseOf(const Pending& pd) const {
-  double total = 0;
-  std::size_t best = 0;
-  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
-    total += std::exp(pd.log_weight[h]);
-    if (pd.log_weight[h] > pd.log_weight[best]) best = h;
-  }
-  double mass = 0, mean = 0;
-  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
-    if (std::abs(pd.cell[h] - pd.cell[best]) > 1) continue;
-    const double w = std::exp(pd.log_weight[h]);
-    mass += w;
-    mean += w * CellElevation(pd.cell[h]);
-  }
-  mean /= mass;
-  const double sigma_h = Spacing() / 2;
-  double var = 0;
-  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
-    if (std::abs(pd.cell[h] - pd.cell[best]) > 1) continue;
-    const double d = CellElevation(pd.cell[h]) - mean;
-    var += std::exp(pd.log_weight[h]) / mass * (sigma_h * sigma_h + d * d);
-  }
-  return Collapse{mean, std::sqrt(var), mass / total};
-}
-
-std::pair<double, double> SonarEkf::FanMoments() const {
-  const double sigma_h = Spacing() / 2;
-  double var = 0;
-  for (int c = 0; c < options_.hypotheses; ++c) var += CellElevation(c) * CellElevation(c);
-  return {0.0, std::sqrt(sigma_h * sigma_h + var / options_.hypotheses)};
-}
-
-std::pair<double, int> SonarEkf::PromotePending(const std::vector<std::size_t>& which,
-                                                const std::vector<std::pair<double, double>>& priors) {
-  if (which.empty()) return {0.0, 0};
-  // Enter every feature from its first view with its elevation prior...
-  std::vector<NewFeature> nf;
-  for (std::size_t j = 0; j < which.size(); ++j) {
-    const Pending& pd = pending_[which[j]];
-    const View& anchor = pd.views.front();
-    const auto [phi, sigma_phi] = priors[j];
-    NewFeature f;
-    f.id = pd.id;
-    f.first_step = anchor.step;
-    f.observations = static_cast<int>(pd.views.size());
-    f.pose_offset = anchor.step == step_ ? 0 : CloneOffset(anchor.step);
-    Eigen::Matrix3d J_polar;
-    f.mean =
-        SonarBackProjectJacobians(x_.segment<6>(f.pose_offset), anchor.range, anchor.azimuth, phi, &f.J_pose, &J_polar);
-    const Eigen::Vector3d var(sensor_.range_sigma * sensor_.range_sigma, sensor_.azimuth_sigma * sensor_.azimuth_sigma,
-                              sigma_phi * sigma_phi);
-    f.polar_cov = J_polar * var.asDiagonal() * J_polar.transpose();
-    nf.push_back(f);
-  }
-  Eigen::VectorXd b;
-  Eigen::MatrixXd C, B;
-  AddFeatureBlocks(nf, P_, b, C, B);
-  const int base = static_cast<int>(x_.size());
-  Append(b, C, B);
-  // ... then replay the later views against the poses they were taken from.
-  std::vector<Obs> replay;
-  for (std::size_t j = 0; j < which.size(); ++j) {
-    const Pending& pd = pending_[which[j]];
-    const int offset = base + 3 * static_cast<int>(j);
-    features_[pd.id] = FeatureSlot{offset, nf[j].observations, nf[j].first_step};
-    for (std::size_t v = 0; v < pd.views.size(); ++v) {
-      const View& view = pd.views[v];
-      if (v > 0) {
-        replay.push_back(Obs{view.step == step_ ? 0 : CloneOffset(view.step), offset, view.range, view.azimuth});
-      }
-      for (Clone& c : clones_) {
-        if (c.step == view.step) --c.users;
-      }
-    }
-  }
-  const double nis = replay.empty() ? 0.0 : Update(replay);
-  std::vector<bool> drop(pending_.size(), false);
-  for (std::size_t i : which) drop[i] = true;
-  std::vector<Pending> keep;
-  for (std::size_t i = 0; i < pending_.size(); ++i) {
-    if (!drop[i]) keep.push_back(std::move(pending_[i]));
-  }
-  pending_ = std::move(keep);
-  return {nis, 2 * static_cast<int>(replay.size())};
-}
-
-void SonarEkf::ReleaseClones() {
-  for (std::size_t i = clones_.size(); i-- > 0;) {
-    if (clones_[i].users > 0) continue;
-    const int offset = clones_[i].offset;
-    clones_.erase(clones_.begin() + static_cast<std::ptrdiff_t>(i));
-    RemoveBlock(offset, 6);
-  }
-}
-
-SonarFeatureEstimate SonarEkf::PendingEstimate(const Pending& pd) const {
-  // Moments of the hypothesis mixture seen from the first view's clone.
-  const View& anchor = pd.views.front();
-  const int a = CloneOffset(anchor.step);
-  const Vector6d xa = x_.segment<6>(a);
-  double sw = 0;
-  for (double l : pd.log_weight) sw += std::exp(l);
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  double phi = 0;
-  std::vector<Eigen::Vector3d> pts;
-  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
-    const double w = std::exp(pd.log_weight[h]) / sw;
-    pts.push_back(SonarBackProject<double>(xa, anchor.range, anchor.azimuth, CellElevation(pd.cell[h])));
-    mean += w * pts.back();
-    phi += w * CellElevation(pd.cell[h]);
-  }
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (std::size_t h = 0; h < pd.cell.size(); ++h) {
-    const Eigen::Vector3d d = pts[h] - mean;
-    cov += std::exp(pd.log_weight[h]) / sw * d * d.transpose();
-  }
-  Eigen::Matrix<double, 3, 6> J_pose;
-  Eigen::Matrix3d J_polar;
-  SonarBackProjectJacobians(xa, anchor.range, anchor.azimuth, phi, &J_pose, &J_polar);
-  const double sigma_h = Spacing() / 2;
-  const Eigen::Vector3d var(sensor_.range_sigma * sensor_.range_sigma, sensor_.azimuth_sigma * sensor_.azimuth_sigma,
-                            sigma_h * sigma_h);
-  cov += J_pose * P_.block<6, 6>(a, a) * J_pose.transpose() + J_polar * var.asDiagonal() * J_polar.transpose();
-  SonarFeatureEstimate f;
-  f.id = pd.id;
-  f.position = mean;
-  f.covariance = cov;
-  f.in_state = false;
-  f.observations = static_cast<int>(pd.views.size());
-  f.first_step = anchor.step;
-  return f;
 }
 
 std::vector<SonarFeatureEstimate> SonarEkf::Features() const {

@@ -43,74 +43,10 @@
 #include <vector>
 
 #include "geometry/pose.h"
+#include "sonar/sonar_ekf_types.h"
 #include "survey/acoustic_sequence.h"
 
 namespace hull {
-
-enum class SonarInit {
-  kPaper,       // elevation 0, sigma_phi = elevation_fov / 4 (Mai et al.)
-  kHypotheses,  // delayed multi-hypothesis elevation (ours)
-};
-// "paper" / "hypotheses"; ParseSonarInit throws OptionError on another name.
-const char* SonarInitName(SonarInit init);
-SonarInit ParseSonarInit(const std::string& name);
-
-struct SonarEkfOptions {
-  // How a feature enters the state when first seen.
-  SonarInit init = SonarInit::kHypotheses;
-  // kPaper: the elevation's initial standard deviation as a fraction of the
-  // full elevation field of view (the paper's "fan": 1/4).
-  double paper_elevation_sigma_fraction = 0.25;
-  // kHypotheses: number of elevation hypotheses tiling the fan (>= 3); each
-  // has a standard deviation of half the spacing, elevation_fov / hypotheses.
-  int hypotheses = 9;
-  // kHypotheses: a feature enters the state once the most probable hypothesis
-  // and its two neighbours hold this share of the weight...
-  double collapse_probability = 0.99;
-  // ... and it has been seen in at least this many views after the first.
-  int min_extra_views = 1;
-  // kHypotheses: after this many steps since the first view a feature enters
-  // with the whole fan as its elevation prior, however vague its weights.
-  int max_delay_steps = 8;
-  // kHypotheses: hypotheses whose weight falls below this fraction of the
-  // best one's are dropped.
-  double prune_ratio = 1e-4;
-  // Joseph-form covariance update (true) or the shorter P - M S^-1 M^T (false).
-  bool joseph = true;
-  // Measurements (features) per block of the update: the result is the batch
-  // update whatever the block (up to rounding); blocks only bound the cost of
-  // the innovation solves (O(N m_b^2) each instead of O(N m^2)).
-  int update_block = 16;
-
-  // True when every field is usable; otherwise false and, when why is given,
-  // the field and the reason.
-  bool Check(std::string* why = nullptr) const;
-};
-
-// One feature's estimate.
-struct SonarFeatureEstimate {
-  std::int64_t id = 0;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  // False while kHypotheses still weighs its elevation: position and
-  // covariance are then the moments of the hypothesis mixture (not in the state).
-  bool in_state = true;
-  int observations = 0;         // measurements of it so far (the first included)
-  std::int64_t first_step = 0;  // when it was first seen
-};
-
-// What one Step() did.
-struct SonarStepEstimate {
-  std::int64_t step = 0;
-  Vector6d pose = Vector6d::Zero();
-  Matrix6d pose_covariance = Matrix6d::Zero();
-  int measurements = 0;  // measurements given at the step
-  int updated = 0;       // of which used in the EKF update (in-state features)
-  int initialised = 0;   // features that entered the state at the step
-  int pending = 0;       // features still waiting for their elevation (kHypotheses)
-  double nis = 0;        // normalised innovation squared of the update
-  int nis_dof = 0;       // its degrees of freedom (2 per used measurement)
-};
 
 class SonarEkf {
  public:
@@ -126,6 +62,33 @@ class SonarEkf {
   // (their step must be this step's, each feature once). Throws
   // std::invalid_argument on misuse. Returns the pose estimate after the step.
   SonarStepEstimate Step(const SonarControl* control, const std::vector<SonarMeasurement>& measurements);
+
+  // The two halves of Step(), for data association in between: Predict moves
+  // to the next step with its control (as Step), Correct then takes that
+  // step's measurements. Throws std::invalid_argument when they do not alternate.
+  void Predict(const SonarControl* control);
+  SonarStepEstimate Correct(const std::vector<SonarMeasurement>& measurements);
+
+  // Predicted measurements of in-state features at the current pose, for
+  // gating: z = h(X) (range, azimuth per feature, in the order of ids) and
+  // the joint covariance H P H^T (2n x 2n, without measurement noise).
+  // Throws std::invalid_argument for an id not in the state.
+  void PredictMeasurements(const std::vector<std::int64_t>& ids, Eigen::VectorXd* z, Eigen::MatrixXd* HPHt) const;
+  // A waiting feature's predicted measurement, one Gaussian per surviving
+  // elevation hypothesis: mean, covariance without the new measurement's
+  // noise and normalised weight. Throws std::invalid_argument for an id not waiting.
+  struct HypothesisPrediction {
+    Eigen::Vector2d z = Eigen::Vector2d::Zero();
+    Eigen::Matrix2d S = Eigen::Matrix2d::Identity();
+    double weight = 0;
+  };
+  std::vector<HypothesisPrediction> PredictPending(std::int64_t id) const;
+  // Ids in the state and waiting, ascending.
+  std::vector<std::int64_t> FeatureIds() const;
+  std::vector<std::int64_t> PendingIds() const;
+  // Removes a feature from the state (marginalised out: the rest of the
+  // estimate is unchanged) or from the waiting list. Returns false when unknown.
+  bool DropFeature(std::int64_t id);
 
   // The step of the last Step() call (-1 before the first).
   std::int64_t step() const { return step_; }
@@ -163,6 +126,7 @@ class SonarEkf {
   struct View {
     std::int64_t step = 0;
     double range = 0, azimuth = 0;
+    Eigen::Vector2d sigma = Eigen::Vector2d::Zero();  // of range and azimuth
   };
   // A feature waiting for its elevation (kHypotheses).
   struct Pending {
@@ -177,14 +141,20 @@ class SonarEkf {
     int pose_offset = 0;
     int feature_offset = 0;
     double range = 0, azimuth = 0;
+    Eigen::Vector2d sigma = Eigen::Vector2d::Zero();  // of range and azimuth
   };
 
-  void Predict(const SonarControl& control);
+  void PredictPose(const SonarControl& control);
+  // Throws std::invalid_argument unless every measurement is of `step`, finite and of a distinct feature.
+  void CheckMeasurements(const std::vector<SonarMeasurement>& measurements, std::int64_t step) const;
+  // Standard deviations of a measurement's range and azimuth (the sensor's unless it gives its own).
+  Eigen::Vector2d NoiseOf(const SonarMeasurement& m) const;
   // Batch EKF update; returns the normalised innovation squared.
   double Update(const std::vector<Obs>& obs);
   // Appends blocks to the state: mean b, covariance of the new block B_bb and
   // cross-covariance with the existing state C (rows: new, cols: old).
-  void Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb);
+  // Returns the offset of the first new row.
+  int Append(const Eigen::VectorXd& b, const Eigen::MatrixXd& C, const Eigen::MatrixXd& B_bb);
   void RemoveBlock(int offset, int size);
   // kPaper: every new feature of the step enters the state.
   void InitialisePaper(const std::vector<const SonarMeasurement*>& fresh);
@@ -194,6 +164,8 @@ class SonarEkf {
   int CloneOffset(std::int64_t step) const;
   void EnsureClone();  // a clone of the current pose for this step
   void WeighPending(Pending& pd, const SonarMeasurement& m) const;
+  // Per hypothesis: predicted measurement and its covariance without the new measurement's noise.
+  std::vector<HypothesisPrediction> HypothesisPredictions(const Pending& pd) const;
   // The merged Gaussian (mean, sigma) of the hypotheses within one cell of the
   // best, and the share of the weight they hold.
   struct Collapse {
@@ -214,6 +186,7 @@ class SonarEkf {
   SonarMotionNoise motion_noise_;
   SonarEkfOptions options_;
   std::int64_t step_ = -1;
+  bool predicted_ = false;  // Predict() done, Correct() not yet
   Eigen::VectorXd x_;
   Eigen::MatrixXd P_;
   std::unordered_map<std::int64_t, FeatureSlot> features_;

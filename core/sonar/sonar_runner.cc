@@ -42,14 +42,34 @@ std::vector<std::vector<SonarMeasurement>> MeasurementsByStep(const AcousticSequ
   return by_step;
 }
 
+namespace {
+
+class MeasurementSource final : public SonarStepSource {
+ public:
+  explicit MeasurementSource(const AcousticSequence& seq) : by_step_(MeasurementsByStep(seq)) {}
+  SonarStepEstimate Step(SonarEkf& ekf, const SonarControl* control, int k) override {
+    return ekf.Step(control, by_step_[static_cast<std::size_t>(k)]);
+  }
+
+ private:
+  std::vector<std::vector<SonarMeasurement>> by_step_;
+};
+
+}  // namespace
+
 SonarRunResult RunSonarSequence(const AcousticSequence& seq, const SonarRunOptions& options, Progress* progress) {
+  MeasurementSource source(seq);
+  return RunSonarSequence(seq, options, source, progress);
+}
+
+SonarRunResult RunSonarSequence(const AcousticSequence& seq, const SonarRunOptions& options, SonarStepSource& source,
+                                Progress* progress) {
   std::string why;
   if (!options.Check(&why)) {
     const auto colon = why.find(':');
     throw OptionError(why.substr(0, colon), why.substr(colon + 2));
   }
   const int T = seq.num_steps();
-  const auto by_step = MeasurementsByStep(seq);
   const bool truth_poses = seq.truth && static_cast<int>(seq.truth->poses.size()) == T;
   std::unordered_map<std::int64_t, Eigen::Vector3d> truth_features;
   if (seq.truth) {
@@ -65,7 +85,7 @@ SonarRunResult RunSonarSequence(const AcousticSequence& seq, const SonarRunOptio
   const auto feature_errors = [&](const std::vector<SonarFeatureEstimate>& fs) {
     std::vector<double> e;
     for (const SonarFeatureEstimate& f : fs) {
-      auto it = truth_features.find(f.id);
+      auto it = truth_features.find(source.TruthId(f.id));
       e.push_back(it == truth_features.end() ? kNaN : (f.position - it->second).norm());
     }
     return e;
@@ -79,7 +99,7 @@ SonarRunResult RunSonarSequence(const AcousticSequence& seq, const SonarRunOptio
     if (control) dr = OplusEuler<double>(dr, control->u);
     const auto t0 = std::chrono::steady_clock::now();
     SonarStepRecord rec;
-    rec.estimate = ekf.Step(control, by_step[static_cast<std::size_t>(k)]);
+    rec.estimate = source.Step(ekf, control, k);
     result.filter_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     rec.dead_reckoning = dr;
     const bool last = k == T - 1;
@@ -99,7 +119,7 @@ SonarRunResult RunSonarSequence(const AcousticSequence& seq, const SonarRunOptio
       std::vector<int> offsets;
       std::vector<Eigen::Vector3d> err;
       for (const SonarFeatureEstimate& f : features) {
-        auto it = truth_features.find(f.id);
+        auto it = truth_features.find(source.TruthId(f.id));
         if (!f.in_state || it == truth_features.end()) continue;
         offsets.push_back(ekf.FeatureOffset(f.id));
         err.push_back(f.position - it->second);

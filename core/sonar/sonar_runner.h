@@ -60,9 +60,24 @@ struct SonarRunResult {
   double filter_seconds = 0;  // time spent in SonarEkf::Step
 };
 
+// What feeds the filter at each step: the sequence's measurements (given
+// correspondences) by default, or e.g. features found in its images.
+class SonarStepSource {
+ public:
+  virtual ~SonarStepSource() = default;
+  // Runs step k on the filter (control: nullptr at k = 0) and returns its estimate.
+  virtual SonarStepEstimate Step(SonarEkf& ekf, const SonarControl* control, int k) = 0;
+  // The truth feature a filter feature stands for (-1: none); with given
+  // correspondences the feature itself.
+  virtual std::int64_t TruthId(std::int64_t feature) const { return feature; }
+};
+
 // Throws OptionError when options.Check() fails and hull::Cancelled when the
 // progress asks to stop.
 SonarRunResult RunSonarSequence(const AcousticSequence& seq, const SonarRunOptions& options = {},
+                                Progress* progress = nullptr);
+// The same with another source of measurements.
+SonarRunResult RunSonarSequence(const AcousticSequence& seq, const SonarRunOptions& options, SonarStepSource& source,
                                 Progress* progress = nullptr);
 
 // Splits a sequence's measurements by step (index = step).

@@ -1,5 +1,5 @@
-// Reader, validator and writer of the acoustic sequence, version 1
-// (../shared/survey-format.md, "Acoustic sequence").
+// Reader, validator and writer of the acoustic sequence, versions 1 and 2
+// (../shared/survey-format.md, "Acoustic sequence" and "Acoustic images").
 //
 // One implementation serves both ReadAcousticSequence (stop at the first
 // problem: throw InputError) and ValidateAcousticSequence (collect every
@@ -22,6 +22,7 @@
 #include "base/csv.h"
 #include "base/file_io.h"
 #include "base/json.h"
+#include "survey/sonar_image.h"
 
 namespace hull {
 namespace {
@@ -29,7 +30,8 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kFormat = "hull-sonar";
-constexpr int kVersion = 1;
+constexpr int kVersion = 1;       // without images
+constexpr int kImageVersion = 2;  // with the image block and images/
 // Beyond this many problems per file the validator stops reading it.
 constexpr int kMaxProblemsPerFile = 50;
 
@@ -123,14 +125,35 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
   Guard(sink, [&] {
     const Json& v = r.Required("version");
     if (!v.is_integer()) r.Fail(v, "version", "expected an integer version");
-    if (static_cast<std::int64_t>(v.as_number()) != kVersion) {
+    const auto version = static_cast<std::int64_t>(v.as_number());
+    if (version != kVersion && version != kImageVersion) {
       header_ok = false;
-      r.Fail(
-          v, "version",
-          "unknown version " + FormatDouble(v.as_number()) + "; this reader knows version " + std::to_string(kVersion));
+      r.Fail(v, "version",
+             "unknown version " + FormatDouble(v.as_number()) + "; this reader knows versions " +
+                 std::to_string(kVersion) + " and " + std::to_string(kImageVersion));
     }
+    if (version == kImageVersion) seq.image = SonarImageFormat();
   });
   if (!header_ok) return;  // another format or version: its other keys mean nothing here
+  if (seq.image) {
+    Guard(sink, [&] {
+      const JsonReader im = r.Object("image");
+      auto count = [&](std::string_view key, int& out) {
+        Guard(sink, [&] {
+          const std::int64_t n = im.Integer(key);
+          if (n < 1 || n > 65535) {
+            im.Fail(im.Required(key), key, "must be between 1 and 65535, got " + std::to_string(n));
+          }
+          out = static_cast<int>(n);
+        });
+      };
+      count("range_bins", seq.image->range_bins);
+      count("beams", seq.image->beams);
+      Guard(sink, [&] { seq.image->gain_db = im.NumberOr("gain_db", 0.0); });
+    });
+  } else if (r.Has("image")) {
+    Guard(sink, [&] { r.Fail(r.Required("image"), "image", "an image block needs \"version\": 2 (acoustic images)"); });
+  }
   Guard(sink, [&] {
     if (auto name = r.OptionalString("name")) seq.name = *name;
   });
@@ -330,6 +353,10 @@ void ReadTruth(ProblemSink& sink, const std::string& dir, bool steps_known, Acou
 
 void ReadMeasurements(ProblemSink& sink, const std::string& dir, bool steps_known, AcousticSequence& seq) {
   const std::string path = Join(dir, "measurements.csv");
+  if (seq.image && !fs::exists(path)) {
+    seq.has_measurements = false;  // version 2: the features come from the images
+    return;
+  }
   const std::optional<std::string> text = ReadRequired(sink, path);
   if (!text) return;
   std::optional<CsvReader> csv;
@@ -381,6 +408,50 @@ void ReadMeasurements(ProblemSink& sink, const std::string& dir, bool steps_know
                    [](const SonarMeasurement& a, const SonarMeasurement& b) { return a.step < b.step; });
 }
 
+// Version 2: images/<step>.png for every step 0..T-1 and no image of a step
+// the sequence does not have; the validator also decodes each image.
+void CheckImages(ProblemSink& sink, const std::string& dir, bool steps_known, AcousticSequence& seq) {
+  if (!seq.image) return;
+  const std::string images = Join(dir, "images");
+  if (!fs::is_directory(images)) {
+    sink.Report({images, 0, 0, ""},
+                "the folder is missing; a version 2 acoustic sequence has images/<step>.png "
+                "for every step");
+    return;
+  }
+  if (!steps_known) return;
+  const std::int64_t T = seq.num_steps();
+  const std::string steps = "steps 0.." + std::to_string(T - 1);
+  const std::size_t before = sink.count();
+  for (std::int64_t k = 0; k < T; ++k) {
+    if (sink.count() - before >= static_cast<std::size_t>(kMaxProblemsPerFile)) {
+      sink.Report({images, 0, 0, ""}, "too many problems; the other images were not checked");
+      return;
+    }
+    const std::string path = SonarImagePath(dir, k);
+    if (!fs::exists(path)) {
+      sink.Report({path, 0, 0, ""}, "the image of step " + std::to_string(k) + " is missing; a version 2 " +
+                                        "acoustic sequence has images/<step>.png for every step (" + steps + ")");
+      continue;
+    }
+    if (sink.collecting()) {
+      Guard(sink, [&] { ReadSonarImage(path, *seq.image); });
+    } else {
+      InspectSonarImage(path, *seq.image);
+    }
+  }
+  for (const auto& entry : fs::directory_iterator(images)) {
+    const fs::path name = entry.path().filename();
+    if (name.extension() != ".png") continue;
+    const std::string stem = name.stem().string();
+    if (stem.empty() || stem.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (stem.size() > 12 || std::stoll(stem) >= T) {
+      sink.Report({entry.path().string(), 0, 0, ""},
+                  "an image of step " + stem + ", which the sequence does not have (" + steps + ", controls.csv)");
+    }
+  }
+}
+
 AcousticSequence ReadImpl(ProblemSink& sink, const std::string& dir) {
   AcousticSequence seq;
   if (!fs::is_directory(dir)) {
@@ -391,6 +462,7 @@ AcousticSequence ReadImpl(ProblemSink& sink, const std::string& dir) {
   const bool steps_known = ReadControls(sink, dir, seq);
   ReadTruth(sink, dir, steps_known, seq);
   ReadMeasurements(sink, dir, steps_known, seq);
+  CheckImages(sink, dir, steps_known, seq);
   return seq;
 }
 
@@ -418,7 +490,7 @@ void WriteAcousticSequence(const AcousticSequence& seq, const std::string& dir) 
   fs::create_directories(dir);
   Json doc = Json::Object();
   doc.Set("format", Json(kFormat));
-  doc.Set("version", Json(kVersion));
+  doc.Set("version", Json(seq.image ? kImageVersion : kVersion));
   if (!seq.name.empty()) doc.Set("name", Json(seq.name));
   Json sensor = Json::Object();
   sensor.Set("range_min", Json(seq.sensor.range_min));
@@ -436,6 +508,16 @@ void WriteAcousticSequence(const AcousticSequence& seq, const std::string& dir) 
   noise.Set("translation_floor", Json(seq.motion_noise.translation_floor));
   noise.Set("rotation_floor", Json(seq.motion_noise.rotation_floor));
   doc.Set("motion_noise", std::move(noise));
+  if (seq.image) {
+    Json image = Json::Object();
+    image.Set("range_bins", Json(seq.image->range_bins));
+    image.Set("beams", Json(seq.image->beams));
+    image.Set("gain_db", Json(seq.image->gain_db));
+    doc.Set("image", std::move(image));
+  }
+  if (!seq.image && !seq.has_measurements) {
+    throw std::invalid_argument("WriteAcousticSequence: a version 1 sequence (no image block) needs its measurements");
+  }
   WriteFileAtomic(Join(dir, "sonar.json"), doc.Dump());
 
   CsvWriter controls({"step", "dx", "dy", "dz", "droll", "dpitch", "dyaw"});
@@ -451,7 +533,11 @@ void WriteAcousticSequence(const AcousticSequence& seq, const std::string& dir) 
                    [](const SonarMeasurement& a, const SonarMeasurement& b) { return a.step < b.step; });
   CsvWriter meas({"step", "feature", "range", "azimuth"});
   for (const SonarMeasurement& m : sorted) meas.Add(m.step).Add(m.feature).Add(m.range).Add(m.azimuth).EndRow();
-  WriteFileAtomic(Join(dir, "measurements.csv"), meas.text());
+  if (seq.has_measurements) {
+    WriteFileAtomic(Join(dir, "measurements.csv"), meas.text());
+  } else {
+    fs::remove(Join(dir, "measurements.csv"));
+  }
 
   // Files of an earlier sequence in the same folder must not survive as its truth.
   const bool write_poses = seq.truth && !seq.truth->poses.empty();

@@ -31,6 +31,17 @@ std::string SurveyBundle::ModelHintPath() const {
   return (std::filesystem::path(directory) / p).string();
 }
 
+std::string SurveyBundle::ImagePath(std::int64_t keyframe, bool bottom_camera) const {
+  if (!images) return "";
+  for (const KeyframeImages& f : images->frames) {
+    if (f.keyframe != keyframe) continue;
+    const std::string& rel = bottom_camera ? f.bottom : f.top;
+    if (rel.empty()) return "";
+    return directory.empty() ? rel : (std::filesystem::path(directory) / rel).string();
+  }
+  return "";
+}
+
 std::size_t SurveyBundle::CountLandmarks() const {
   std::unordered_set<std::int64_t> ids;
   for (const auto& f : features) ids.insert(f.landmark);

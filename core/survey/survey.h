@@ -1,4 +1,6 @@
-// Survey bundle, version 1 (../shared/survey-format.md): the in-memory model.
+// Survey bundle, versions 1 and 2 (../shared/survey-format.md): the in-memory
+// model. Version 2 adds camera images (images/), listed here by path only:
+// the pixels are read when needed (survey/survey_images.h).
 // Ids are the file's own integers; vectors keep the files' row order (nav is
 // sorted by time, which the contract requires).
 #pragma once
@@ -59,7 +61,14 @@ struct ModelAxes {
   Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
 };
 
+// The optional "images" block of a version 2 survey.json (informational).
+struct ImagingNote {
+  std::optional<double> exposure_s;         // exposure time (s)
+  std::optional<std::string> illumination;  // e.g. "strobe"
+};
+
 struct SurveyManifest {
+  int version = 1;  // 1, or 2 (camera images in images/)
   std::string name;
   std::string vehicle;
   std::optional<std::string> model_hint;  // mesh path relative to the bundle
@@ -71,6 +80,7 @@ struct SurveyManifest {
   std::optional<Vector6d> model_pose_guess;  // initial x_gM
   std::optional<ModelAxes> model_axes;
   NoiseModel noise;
+  std::optional<ImagingNote> imaging;  // version 2 "images" block
 
   // Unit beam directions in the DVL frame d.
   Eigen::Vector3d BeamDirection(int i) const { return beams[i].normalized(); }
@@ -149,6 +159,19 @@ struct SurveyTruth {
   Vector6d x_s_cT = Vector6d::Zero();
 };
 
+// The camera images of a version 2 bundle: which keyframes have which
+// image. Paths are relative to the bundle ("images/12_top.png").
+struct KeyframeImages {
+  std::int64_t keyframe = 0;
+  std::string top, bottom;  // empty: no image (a dropped frame; bottom always empty for mono)
+};
+struct SurveyImages {
+  std::vector<KeyframeImages> frames;  // one per keyframe, in nav.csv order
+  int expected = 0;                    // images the keyframes call for (1 or 2 per keyframe)
+  int dropped = 0;                     // of which missing (dropped frames)
+  int present() const { return expected - dropped; }
+};
+
 struct SurveyBundle {
   std::string directory;  // where it was read from (empty when built in memory)
   SurveyManifest manifest;
@@ -159,6 +182,10 @@ struct SurveyBundle {
   std::optional<std::vector<LandmarkRecord>> landmarks;
   std::optional<SurveyTruth> truth;
   std::optional<AcousticSequence> sonar;
+  std::optional<SurveyImages> images;  // version 2 with an images/ folder
+
+  // Absolute path of a keyframe's image, or "" when it has none.
+  std::string ImagePath(std::int64_t keyframe, bool bottom_camera = false) const;
 
   // keyframe id -> index into nav.
   std::unordered_map<std::int64_t, int> KeyframeIndex() const;

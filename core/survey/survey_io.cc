@@ -8,6 +8,7 @@
 #include "base/csv.h"
 #include "base/file_io.h"
 #include "base/json.h"
+#include "survey/survey_images.h"
 
 namespace hull {
 namespace fs = std::filesystem;
@@ -95,10 +96,11 @@ SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
     root.Fail(root.Required("format"), "format", "expected \"hull-survey\", got \"" + format + "\"");
   }
   const std::int64_t version = root.Integer("version");
-  if (version != 1) {
+  if (version != 1 && version != 2) {
     root.Fail(root.Required("version"), "version",
-              "unsupported version " + std::to_string(version) + "; this reader knows version 1");
+              "unsupported version " + std::to_string(version) + "; this reader knows versions 1 and 2");
   }
+  m.version = static_cast<int>(version);
   m.name = root.OptionalString("name").value_or("");
   m.vehicle = root.OptionalString("vehicle").value_or("");
   m.model_hint = root.OptionalString("model_hint");
@@ -158,6 +160,15 @@ SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
     }
     m.model_axes = a;
   }
+  if (auto im = root.OptionalObject("images")) {
+    ImagingNote note;
+    if (im->Has("exposure_s")) {
+      note.exposure_s = im->Number("exposure_s");
+      CheckPositive(*im, "exposure_s", *note.exposure_s);
+    }
+    note.illumination = im->OptionalString("illumination");
+    m.imaging = note;
+  }
   if (auto nz = root.OptionalObject("noise")) {
     NoiseModel& n = m.noise;
     struct Item {
@@ -189,7 +200,7 @@ SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
 Json ManifestJson(const SurveyManifest& m) {
   Json root = Json::Object();
   root.Set("format", "hull-survey");
-  root.Set("version", 1);
+  root.Set("version", m.version);
   if (!m.name.empty()) root.Set("name", m.name);
   if (!m.vehicle.empty()) root.Set("vehicle", m.vehicle);
   if (m.model_hint) root.Set("model_hint", *m.model_hint);
@@ -240,6 +251,12 @@ Json ManifestJson(const SurveyManifest& m) {
   nz.Set("model_pose_sigma", n.model_pose_sigma);
   nz.Set("servo_to_top_sigma", Vec(n.servo_to_top_sigma));
   root.Set("noise", nz);
+  if (m.imaging) {
+    Json im = Json::Object();
+    if (m.imaging->exposure_s) im.Set("exposure_s", *m.imaging->exposure_s);
+    if (m.imaging->illumination) im.Set("illumination", *m.imaging->illumination);
+    root.Set("images", im);
+  }
   return root;
 }
 
@@ -410,10 +427,10 @@ void ReadDvl(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagn
       });
 }
 
-void ReadFeatures(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
+void ReadFeatures(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag, bool required) {
   const std::string name = Rel(dir, "features.csv");
   std::string text;
-  if (!OpenCsv(name, name, true, diag, text)) return;
+  if (!OpenCsv(name, name, required, diag, text)) return;
   const bool stereo = b.manifest.camera.stereo();
   const CameraRig& cam = b.manifest.camera;
   int c_kf = -1, c_lm = -1, c_ut = -1, c_vt = -1, c_ub = -1, c_vb = -1;
@@ -625,6 +642,36 @@ void ReadTruth(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Dia
   b.truth = std::move(t);
 }
 
+// Version 2: lists images/ (and, when validating, checks every image).
+// Returns whether the bundle has images, i.e. whether features.csv is optional.
+bool ReadImagesFolder(const std::string& dir, SurveyBundle& b, const Keyframes& kf, Diagnostics& diag) {
+  const std::string folder = Rel(dir, "images");
+  std::error_code ec;
+  if (!fs::exists(folder, ec)) return false;
+  if (b.manifest.version < 2) {
+    diag.Warning({folder, 0, 0, ""}, "ignored: images need \"version\": 2 in survey.json (this bundle is version 1)");
+    return false;
+  }
+  if (!fs::is_directory(folder, ec)) {
+    diag.Error({folder, 0, 0, ""}, "is not a folder; expected the folder of camera images");
+    return false;
+  }
+  std::vector<Problem> found;
+  b.images = ListSurveyImages(dir, b.manifest, b.nav, kf.unreadable, found);
+  if (diag.collecting()) CheckSurveyImages(dir, b.manifest, *b.images, found);
+  for (const Problem& p : found) {
+    if (p.severity == Severity::kError) {
+      diag.Error(p.where, p.message);
+    } else {
+      diag.Warning(p.where, p.message);
+    }
+  }
+  if (b.images->present() == 0 && !fs::exists(Rel(dir, "features.csv"), ec)) {
+    diag.Error({folder, 0, 0, ""}, "holds no image and there is no features.csv: the bundle has no camera data");
+  }
+  return true;
+}
+
 SurveyBundle ReadImpl(const std::string& dir, std::vector<Problem>* problems) {
   Diagnostics diag(problems);
   SurveyBundle b;
@@ -661,7 +708,7 @@ SurveyBundle ReadImpl(const std::string& dir, std::vector<Problem>* problems) {
   ReadOdometry(dir, b, kf, diag);
   ReadDvl(dir, b, kf, diag);
   if (manifest_ok) {
-    ReadFeatures(dir, b, kf, diag);
+    ReadFeatures(dir, b, kf, diag, !ReadImagesFolder(dir, b, kf, diag));
   } else if (diag.collecting()) {
     diag.Warning({Rel(dir, "features.csv"), 0, 0, ""}, "not checked: survey.json could not be read");
   }
@@ -745,7 +792,9 @@ void WriteSurveyBundle(const SurveyBundle& b, const std::string& dir) {
     }
     WriteFileAtomic(Rel(dir, "dvl.csv"), w.text());
   }
-  {
+  // A version 2 bundle with images may have no features.csv (images/ itself
+  // is written by whoever has the pixels, e.g. the simulator's renderer).
+  if (!(b.manifest.version >= 2 && b.images && b.features.empty())) {
     const bool stereo = b.manifest.camera.stereo();
     std::vector<std::string> head = {"keyframe", "landmark", "u_top", "v_top", "u_bottom", "v_bottom"};
     if (!stereo) head.resize(4);

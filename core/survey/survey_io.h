@@ -1,4 +1,5 @@
-// Reading, validating and writing survey bundles (version 1).
+// Reading, validating and writing survey bundles (versions 1 and 2; the
+// images of version 2 are listed here, read and checked in survey_images.h).
 #pragma once
 
 #include <string>

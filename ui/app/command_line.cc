@@ -33,12 +33,16 @@ QString UsageText() {
       "\n"
       "HullInspect: inspect ship hulls from underwater robot surveys.\n"
       "\n"
-      "  MESH            a hull model (PLY, STL, OBJ, OFF, glTF, ...; also .gz)\n"
+      "  MESH            a hull model (PLY, STL, OBJ, OFF, glTF, ...; also .gz;\n"
+      "                  STEP and IGES through the step-iges plugin)\n"
       "  BUNDLE          a survey bundle folder (survey.json, nav.csv, ...)\n"
       "  PROJECT.hiproj  a saved project\n"
       "  --demo          simulate (once, then cached) and open the demo survey\n"
       "  --help          this text\n"
       "  --version       the version\n"
+      "  --plugin-option PLUGIN.KEY=VALUE\n"
+      "                  set a plugin's option, e.g. step-iges.chord-tolerance=0.002\n"
+      "                  (hullinspect-cli plugins lists them)\n"
       "\n"
       "Without a display (no DISPLAY or WAYLAND_DISPLAY) use hullinspect-cli.\n");
 }

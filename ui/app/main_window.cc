@@ -1,5 +1,7 @@
 #include "ui/app/main_window.h"
 
+#include "plugin/plugin_registry.h"
+
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
@@ -37,9 +39,14 @@ namespace hull::ui {
 
 namespace {
 
-const char* kMeshFilter =
-    "Meshes (*.ply *.stl *.obj *.off *.gltf *.glb *.dae *.3ds *.fbx *.ply.gz *.stl.gz *.obj.gz *.off.gz);;All files "
-    "(*)";
+// The open dialog's mesh formats: the built-in ones and what plugins read (STEP, IGES).
+QString MeshFilter() {
+  QString patterns =
+      QStringLiteral("*.ply *.stl *.obj *.off *.gltf *.glb *.dae *.3ds *.fbx *.ply.gz *.stl.gz *.obj.gz *.off.gz");
+  for (const std::string& e : plugin::Registry::Global().MeshExtensions())
+    patterns += QStringLiteral(" *") + QString::fromStdString(e);
+  return QStringLiteral("Meshes (%1);;All files (*)").arg(patterns);
+}
 
 }  // namespace
 
@@ -379,8 +386,7 @@ bool MainWindow::SaveScreenshot(const QString& path) {
 }
 
 void MainWindow::AskOpenMesh() {
-  const QString path = QFileDialog::getOpenFileName(this, QStringLiteral("Open a hull mesh"), QString(),
-                                                    QString::fromLatin1(kMeshFilter));
+  const QString path = QFileDialog::getOpenFileName(this, QStringLiteral("Open a hull mesh"), QString(), MeshFilter());
   if (!path.isEmpty()) OpenPaths({path});
 }
 

@@ -12,6 +12,7 @@
 #include <QTimer>
 #include <algorithm>
 
+#include "plugin/plugin_registry.h"
 #include "ui/app/main_window.h"
 #include "ui/controllers/inspection_controller.h"
 #include "ui/controllers/result_exports.h"
@@ -225,6 +226,13 @@ void MainWindow::AskExportResult(const QString& what) {
   QString name = what + QStringLiteral(".csv");
   if (what == QLatin1String("model")) {
     filter = QStringLiteral("PLY with deviation (*.ply);;OBJ (*.obj);;STL (*.stl)");
+    for (const auto& p : plugin::Registry::Global().Plugins()) {  // exporter plugins: glTF, ...
+      for (const auto& e : p->result_exporters) {
+        QStringList patterns;
+        for (const std::string& x : e->Extensions()) patterns << QStringLiteral("*") + QString::fromStdString(x);
+        filter += QStringLiteral(";;%1 (%2)").arg(QString::fromStdString(e->Name()), patterns.join(QLatin1Char(' ')));
+      }
+    }
     name = QStringLiteral("remeshed-model.ply");
   }
   const QString path = QFileDialog::getSaveFileName(this, QStringLiteral("Export"), name, filter);

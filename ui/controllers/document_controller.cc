@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "geometry/mesh_io.h"
-#include "survey/survey_io.h"
+#include "survey/survey_import.h"
 #include "ui/jobs/error_text.h"
 #include "ui/session/demo_cache.h"
 
@@ -45,7 +45,7 @@ OpenResult RunOpen(const OpenRequest& request, bool load_model_hint, const std::
   }
   if (!bundle_path.empty()) {
     progress.Update(start, "reading the survey bundle " + bundle_path);
-    auto bundle = std::make_shared<SurveyBundle>(ReadSurveyBundle(bundle_path));
+    auto bundle = std::make_shared<SurveyBundle>(OpenSurveyBundle(bundle_path));
     progress.ThrowIfCancelled();
     if (mesh_path.empty() && load_model_hint) {
       const std::string hint = bundle->ModelHintPath();
@@ -102,6 +102,8 @@ ClassifiedPaths ClassifyPaths(const QStringList& paths) {
       ok = put(c.project, info.absoluteFilePath(), "project");
     } else if (IsMeshFile(Native(path))) {
       ok = put(c.mesh, info.absoluteFilePath(), "mesh");
+    } else if (IsSurveyPath(Native(path))) {  // a survey log a plugin converts
+      ok = put(c.bundle, info.absoluteFilePath(), "survey bundle");
     } else {
       c.error = QStringLiteral(
                     "%1:\nnot a mesh (PLY, STL, OBJ, OFF, glTF, … also .gz), a survey bundle folder or a .hiproj "

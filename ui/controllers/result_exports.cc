@@ -6,7 +6,7 @@
 
 #include "base/csv.h"
 #include "base/file_io.h"
-#include "geometry/mesh_io.h"
+#include "pipeline/model_export.h"
 
 namespace hull::ui {
 
@@ -67,7 +67,7 @@ void ResultExporter::Export(const QString& path, const QString& what,
 
 void ResultExporter::ExportModel(const QString& path) {
   Export(path, QStringLiteral("the remeshed model"),
-         [](const MappingResult& r, const std::string& target) { SaveMesh(r.model, target); });
+         [](const MappingResult& r, const std::string& target) { hull::ExportModel(r.model, "", target); });
 }
 
 void ResultExporter::ExportObjects(const QString& path) {

@@ -1,6 +1,6 @@
 // Exports of the mapping on screen, in jobs (kind "export:<file>"): the fused,
-// remeshed model (PLY with the per-vertex "deviation" and "fusions", OBJ or
-// STL, by the extension) and the detected objects and zones as CSV, in the
+// remeshed model (PLY with the per-vertex "deviation" and "fusions", OBJ,
+// STL, or an exporter plugin's format such as glTF, by the extension) and the detected objects and zones as CSV, in the
 // columns of the results format (docs/results-format.md: objects.csv and
 // zones.csv). Errors go through failed(); nothing here shows a dialog.
 #pragma once

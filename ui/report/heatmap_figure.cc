@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/deviation_colours.h"
 #include "geometry/mesh_index.h"
 #include "ui/report/figures.h"
 #include "ui/report/plot_painter.h"
@@ -98,9 +99,7 @@ class HeatmapFigure final : public Figure {
         if (!fusions || (*fusions)[i] > 0) magnitudes.push_back(std::abs((*dev)[i]));
       }
     }
-    range_ = options.deviation_range > 0
-                 ? options.deviation_range
-                 : std::max(0.05, std::ceil(Percentile(magnitudes, 0.99) / 0.025 - 1e-9) * 0.025);
+    range_ = options.deviation_range > 0 ? options.deviation_range : DeviationColourRange(std::move(magnitudes));
 
     // Overview: the whole hull.
     overview_.window = ProjectedBounds(mesh, view_);

@@ -4,23 +4,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/deviation_colours.h"
+
 namespace hull::report {
 
 QColor DivergingColour(double t) {
-  // ColorBrewer RdBu (11 classes), from blue (t = -1) to red (t = 1).
-  static const QColor stops[] = {QColor(0x05, 0x30, 0x61), QColor(0x21, 0x66, 0xac), QColor(0x43, 0x93, 0xc3),
-                                 QColor(0x92, 0xc5, 0xde), QColor(0xd1, 0xe5, 0xf0), QColor(0xf7, 0xf7, 0xf7),
-                                 QColor(0xfd, 0xdb, 0xc7), QColor(0xf4, 0xa5, 0x82), QColor(0xd6, 0x60, 0x4d),
-                                 QColor(0xb2, 0x18, 0x2b), QColor(0x67, 0x00, 0x1f)};
-  constexpr int n = sizeof stops / sizeof stops[0];
-  if (!std::isfinite(t)) t = 0;
-  const double x = (std::clamp(t, -1.0, 1.0) + 1) / 2 * (n - 1);
-  const int i = std::min(n - 2, static_cast<int>(std::floor(x)));
-  const double f = x - i;
-  const QColor& a = stops[i];
-  const QColor& b = stops[i + 1];
-  return QColor::fromRgbF(a.redF() + f * (b.redF() - a.redF()), a.greenF() + f * (b.greenF() - a.greenF()),
-                          a.blueF() + f * (b.blueF() - a.blueF()));
+  const std::array<double, 3> rgb = DivergingRgb(t);  // ColorBrewer RdBu, blue (t = -1) to red (t = 1)
+  return QColor::fromRgbF(rgb[0], rgb[1], rgb[2]);
 }
 
 QColor ModelColour(SurfaceModel m) {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -39,7 +40,8 @@ CliRun Cli(const std::vector<std::string>& args) {
   return r;
 }
 
-const std::vector<std::string> kCommands = {"simulate", "validate", "info", "align", "run", "adjust", "map", "sonar"};
+const std::vector<std::string> kCommands = {"simulate", "validate", "info",  "align",  "run",
+                                            "adjust",   "map",      "sonar", "export", "plugins"};
 
 TEST(Cli, EveryCommandHasHelp) {
   for (const std::string& c : kCommands) {
@@ -122,6 +124,61 @@ TEST(Cli, SimulateThenValidateAndNameACorruptField) {
   r = Cli({"info", bundle});
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("nav.csv:7"), std::string::npos) << r.output;
+}
+
+TEST(Cli, SonarFromImages) {
+  const hull::testing::ScratchDir tmp("cli_sonar_images");
+  const std::string seq = tmp / "tank";
+  CliRun r = Cli({"simulate", "--preset", "sonar-tank", "--images", "--out", seq, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(seq + "/images/7.png"));
+  EXPECT_TRUE(std::filesystem::exists(seq + "/truth/scene.ply"));
+  r = Cli({"validate", seq});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = Cli({"info", seq});
+  EXPECT_NE(r.output.find("512 range bins x 128 beams"), std::string::npos) << r.output;
+
+  // With measurements.csv the default is the given correspondences...
+  r = Cli({"sonar", seq, "--out", tmp / "given", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(hull::testing::ReadText(tmp / "given/summary.json").find("\"source\": \"measurements\""),
+            std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(tmp / "given/detections.csv"));
+  // ... --from-images runs the whole chain ...
+  r = Cli({"sonar", seq, "--from-images", "--out", tmp / "images", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("of the visible true features detected per frame"), std::string::npos) << r.output;
+  const std::string summary = hull::testing::ReadText(tmp / "images/summary.json");
+  EXPECT_NE(summary.find("\"source\": \"images\""), std::string::npos);
+  EXPECT_NE(summary.find("\"mean_detection_rate\""), std::string::npos);
+  EXPECT_NE(hull::testing::ReadText(tmp / "images/detections.csv").find("step,detection,row,col"), std::string::npos);
+  // ... and without measurements.csv the images are the default.
+  std::filesystem::remove(seq + "/measurements.csv");
+  r = Cli({"sonar", seq, "--out", tmp / "default", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(hull::testing::ReadText(tmp / "default/summary.json").find("\"source\": \"images\""), std::string::npos);
+  r = Cli({"sonar", seq, "--from-measurements", "--out", tmp / "x", "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("measurements.csv"), std::string::npos) << r.output;
+  r = Cli({"sonar", seq, "--from-images", "--from-measurements", "--out", tmp / "x"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+
+  // A truncated image is named (exit 3).
+  const std::string image = seq + "/images/3.png";
+  const std::string bytes = hull::testing::ReadText(image);
+  hull::testing::WriteText(image, bytes.substr(0, bytes.size() / 3));
+  r = Cli({"sonar", seq, "--out", tmp / "x", "--quiet"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("images/3.png"), std::string::npos) << r.output;
+
+  // Images need a sonar preset; a version 1 sequence has none to use.
+  r = Cli({"simulate", "--preset", "demo", "--images", "--out", tmp / "x"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  const std::string v1 = tmp / "v1";
+  ASSERT_EQ(Cli({"simulate", "--preset", "sonar-prism", "--out", v1}).exit_code, 0);
+  r = Cli({"sonar", v1, "--from-images", "--out", tmp / "x"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("no images"), std::string::npos) << r.output;
 }
 
 }  // namespace

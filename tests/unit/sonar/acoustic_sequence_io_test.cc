@@ -239,12 +239,12 @@ TEST_F(AcousticIoTest, UnknownVersionIsRefused) {
   std::string json = ReadText(File("sonar.json"));
   const std::size_t at = json.find("\"version\": 1");
   ASSERT_NE(at, std::string::npos);
-  json.replace(at, 12, "\"version\": 2");
+  json.replace(at, 12, "\"version\": 3");
   WriteText(File("sonar.json"), json);
   // The value's position: line 3 of the pretty-printed manifest, after the key.
   const std::string line = LineOf(json, 3);
-  const std::string msg = ExpectError(dir_.path(), "sonar.json", 3, static_cast<int>(line.find('2')) + 1, "version");
-  EXPECT_NE(msg.find("unknown version 2"), std::string::npos) << msg;
+  const std::string msg = ExpectError(dir_.path(), "sonar.json", 3, static_cast<int>(line.find('3')) + 1, "version");
+  EXPECT_NE(msg.find("unknown version 3"), std::string::npos) << msg;
 }
 
 TEST_F(AcousticIoTest, WrongFormatIsRefused) {

@@ -199,8 +199,8 @@ TEST_F(SurveyIo, ManifestFormatAndVersion) {
 }
 
 TEST_F(SurveyIo, ManifestUnknownVersion) {
-  Replace("survey.json", "\"version\": 1", "\"version\": 2");
-  ExpectError("survey.json", 3, "version", "unsupported version 2");
+  Replace("survey.json", "\"version\": 1", "\"version\": 3");
+  ExpectError("survey.json", 3, "version", "unsupported version 3");
 }
 
 TEST_F(SurveyIo, ManifestCameraType) {
