@@ -10,9 +10,9 @@
 
 #include "base/error.h"
 #include "plugin/plugin_registry.h"
-#include "ui/app_setup.h"
-#include "ui/command_line.h"
-#include "ui/main_window.h"
+#include "ui/app/app_setup.h"
+#include "ui/app/command_line.h"
+#include "ui/app/main_window.h"
 #include "ui/report/headless_job.h"
 
 namespace {

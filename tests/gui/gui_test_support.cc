@@ -10,7 +10,7 @@
 #include "base/progress.h"
 #include "geometry/mesh_io.h"
 #include "survey/survey_io.h"
-#include "ui/demo_cache.h"
+#include "ui/session/demo_cache.h"
 
 namespace hull::ui::testing {
 

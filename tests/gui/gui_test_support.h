@@ -12,9 +12,9 @@
 
 #include "geometry/triangle_mesh.h"
 #include "survey/survey.h"
-#include "ui/app_setup.h"
-#include "ui/job_runner.h"
-#include "ui/survey_overlays.h"
+#include "ui/app/app_setup.h"
+#include "ui/jobs/job_runner.h"
+#include "ui/session/survey_overlays.h"
 
 namespace hull::ui::testing {
 

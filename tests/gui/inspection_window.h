@@ -8,10 +8,10 @@
 #include <QStringList>
 #include <QtTest>
 
-#include "ui/job_runner.h"
-#include "ui/main_window.h"
-#include "ui/parameter_panel.h"
-#include "ui/session.h"
+#include "ui/app/main_window.h"
+#include "ui/jobs/job_runner.h"
+#include "ui/panels/parameter_panel.h"
+#include "ui/session/session.h"
 
 namespace hull::ui::testing {
 

@@ -22,16 +22,16 @@
 
 #include "geometry/mesh_io.h"
 #include "gui_test_support.h"
-#include "ui/demo_cache.h"
-#include "ui/document_controller.h"
-#include "ui/job_status_widget.h"
-#include "ui/layers_panel.h"
-#include "ui/main_window.h"
-#include "ui/parameter_panel.h"
-#include "ui/pick_info_panel.h"
-#include "ui/scene_view.h"
-#include "ui/session.h"
-#include "ui/survey_summary_panel.h"
+#include "ui/app/main_window.h"
+#include "ui/controllers/document_controller.h"
+#include "ui/jobs/job_status_widget.h"
+#include "ui/panels/layers_panel.h"
+#include "ui/panels/parameter_panel.h"
+#include "ui/panels/pick_info_panel.h"
+#include "ui/panels/survey_summary_panel.h"
+#include "ui/session/demo_cache.h"
+#include "ui/session/session.h"
+#include "ui/views/scene_view.h"
 
 using namespace hull::ui;
 using hull::ui::testing::LoadDemo;

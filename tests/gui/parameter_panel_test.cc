@@ -10,7 +10,7 @@
 
 #include "base/error.h"
 #include "gui_test_support.h"
-#include "ui/parameter_panel.h"
+#include "ui/panels/parameter_panel.h"
 
 using namespace hull::ui;
 

@@ -11,13 +11,13 @@
 #include "gui_test_support.h"
 #include "synthetic_results.h"
 #include "synthetic_survey.h"
-#include "ui/cross_section_view.h"
-#include "ui/keyframe_view.h"
-#include "ui/objects_panel.h"
-#include "ui/profile_canvas.h"
-#include "ui/scene_view.h"
-#include "ui/solver_plots_view.h"
-#include "ui/sonar_panel.h"
+#include "ui/panels/objects_panel.h"
+#include "ui/panels/sonar_panel.h"
+#include "ui/views/cross_section_view.h"
+#include "ui/views/keyframe_view.h"
+#include "ui/views/profile_canvas.h"
+#include "ui/views/scene_view.h"
+#include "ui/views/solver_plots_view.h"
 
 using namespace hull::ui;
 using namespace hull::ui::testing;

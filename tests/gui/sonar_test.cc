@@ -12,10 +12,10 @@
 
 #include "gui_test_support.h"
 #include "simulate/sonar_simulator.h"
-#include "ui/main_window.h"
-#include "ui/plot_widget.h"
-#include "ui/sonar_panel.h"
-#include "ui/sonar_view.h"
+#include "ui/app/main_window.h"
+#include "ui/panels/sonar_panel.h"
+#include "ui/views/plot_widget.h"
+#include "ui/views/sonar_view.h"
 
 using namespace hull::ui;
 using hull::ui::testing::OutputDir;

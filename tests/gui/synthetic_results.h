@@ -6,8 +6,8 @@
 
 #include <memory>
 
-#include "ui/inspection_results.h"
-#include "ui/session.h"
+#include "ui/session/inspection_results.h"
+#include "ui/session/session.h"
 
 namespace hull::ui::testing {
 

@@ -7,7 +7,7 @@
 #include "geometry/mesh_io.h"
 #include "support/test_meshes.h"
 #include "survey/survey_io.h"
-#include "ui/survey_overlays.h"
+#include "ui/session/survey_overlays.h"
 
 namespace hull::ui::testing {
 

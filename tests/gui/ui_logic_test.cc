@@ -11,11 +11,11 @@
 #include "base/error.h"
 #include "geometry/mesh_index.h"
 #include "gui_test_support.h"
-#include "ui/command_line.h"
-#include "ui/demo_cache.h"
-#include "ui/document_controller.h"
-#include "ui/pick_details.h"
-#include "ui/project_file.h"
+#include "ui/app/command_line.h"
+#include "ui/controllers/document_controller.h"
+#include "ui/models/pick_details.h"
+#include "ui/session/demo_cache.h"
+#include "ui/session/project_file.h"
 
 using namespace hull::ui;
 using hull::ui::testing::LoadDemo;

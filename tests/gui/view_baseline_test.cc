@@ -12,13 +12,13 @@
 
 #include "gui_test_support.h"
 #include "synthetic_survey.h"
-#include "ui/layers_panel.h"
-#include "ui/main_window.h"
-#include "ui/parameter_panel.h"
-#include "ui/pick_info_panel.h"
-#include "ui/scene_view.h"
-#include "ui/session.h"
-#include "ui/survey_summary_panel.h"
+#include "ui/app/main_window.h"
+#include "ui/panels/layers_panel.h"
+#include "ui/panels/parameter_panel.h"
+#include "ui/panels/pick_info_panel.h"
+#include "ui/panels/survey_summary_panel.h"
+#include "ui/session/session.h"
+#include "ui/views/scene_view.h"
 
 using namespace hull::ui;
 using hull::ui::testing::MakeSyntheticSurvey;

@@ -26,13 +26,13 @@
 #include <string>
 #include <vector>
 
-#include "ui/app_setup.h"
-#include "ui/cross_section_view.h"
-#include "ui/job_runner.h"
-#include "ui/main_window.h"
-#include "ui/objects_panel.h"
-#include "ui/parameter_panel.h"
-#include "ui/sonar_panel.h"
+#include "ui/app/app_setup.h"
+#include "ui/app/main_window.h"
+#include "ui/jobs/job_runner.h"
+#include "ui/panels/objects_panel.h"
+#include "ui/panels/parameter_panel.h"
+#include "ui/panels/sonar_panel.h"
+#include "ui/views/cross_section_view.h"
 
 namespace {
 

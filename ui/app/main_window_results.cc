@@ -1,0 +1,281 @@
+// The main window's result views: the docks that show the inspection's
+// results (cross-section, solver plots, objects and zones, keyframe) and
+// their wiring to the Session, the InspectionController and the 3-D scene.
+#include <QAction>
+#include <QDir>
+#include <QDockWidget>
+#include <QFileDialog>
+#include <QFileInfo>
+#include <QMenu>
+#include <QMenuBar>
+#include <QStatusBar>
+#include <QTimer>
+#include <algorithm>
+
+#include "plugin/plugin_registry.h"
+#include "ui/app/main_window.h"
+#include "ui/controllers/inspection_controller.h"
+#include "ui/controllers/result_exports.h"
+#include "ui/jobs/job_runner.h"
+#include "ui/panels/layers_panel.h"
+#include "ui/panels/objects_panel.h"
+#include "ui/panels/parameter_panel.h"
+#include "ui/panels/sonar_panel.h"
+#include "ui/session/inspection_parameters.h"
+#include "ui/session/session.h"
+#include "ui/views/cross_section_view.h"
+#include "ui/views/keyframe_view.h"
+#include "ui/views/scene_view.h"
+#include "ui/views/solver_plots_view.h"
+
+namespace hull::ui {
+
+void MainWindow::CreateResultDocks() {
+  cross_section_ = new CrossSectionView(this);
+  solver_plots_ = new SolverPlotsView(this);
+  QDockWidget* section = AddView(cross_section_, QStringLiteral("Cross-section"), Qt::BottomDockWidgetArea);
+  QDockWidget* plots = AddView(solver_plots_, QStringLiteral("Solver plots"), Qt::BottomDockWidgetArea);
+  objects_ = new ObjectsPanel(this);
+  keyframe_view_ = new KeyframeView(this);
+  QDockWidget* objects = AddView(objects_, QStringLiteral("Objects and zones"), Qt::BottomDockWidgetArea);
+  QDockWidget* keyframe = AddView(keyframe_view_, QStringLiteral("Keyframe"), Qt::BottomDockWidgetArea);
+  tabifyDockWidget(section, plots);
+  tabifyDockWidget(plots, objects);
+  sonar_ = new SonarPanel(jobs_, this);
+  QDockWidget* sonar = AddView(sonar_, QStringLiteral("Sonar"), Qt::BottomDockWidgetArea);
+  tabifyDockWidget(objects, keyframe);
+  tabifyDockWidget(keyframe, sonar);
+  section->raise();
+  section_dock_ = section;
+  sonar_dock_ = sonar;
+  initial_docks_.push_back(section);
+  exporter_ = new ResultExporter(session_, jobs_, this);
+}
+
+void MainWindow::ConnectResults() {
+  auto update_runs = [this] {
+    const auto& run = session_->adjustment();
+    cross_section_->SetRuns(run, session_->modelRuns());
+    solver_plots_->SetRuns(run, session_->modelRuns());
+  };
+  connect(session_, &Session::adjustmentChanged, this, [this, update_runs] {
+    const auto& run = session_->adjustment();
+    if (run && !scene_->Stats(SceneLayer::kAdjustedLandmarks).present) {
+      // The first results: show them rather than the survey's own
+      // landmarks, DVL hits and true trajectory (still a click away).
+      SceneOptions o = layers_->options();
+      for (SceneLayer layer : {SceneLayer::kLandmarks, SceneLayer::kDvlHits, SceneLayer::kTrueTrajectory}) {
+        o.visible[layer] = false;
+      }
+      layers_->SetOptions(o);
+      scene_->SetOptions(o);
+    }
+    scene_->SetAdjusted(run ? run->overlays : nullptr);
+    update_runs();
+    UpdatePlacement();
+  });
+  connect(session_, &Session::modelRunsChanged, this, update_runs);
+  connect(session_, &Session::mappingChanged, this, [this] {
+    const auto& mapping = session_->mapping();
+    if (mapping && !scene_->Stats(SceneLayer::kHeatmap).present) {
+      // The first map: its heatmap covers the plain hull.
+      SceneOptions o = layers_->options();
+      o.visible[SceneLayer::kHull] = false;
+      layers_->SetOptions(o);
+      scene_->SetOptions(o);
+    }
+    scene_->SetMapping(mapping);
+    objects_->SetMapping(mapping);
+    keyframe_view_->SetMapping(mapping);
+    UpdatePlacement();
+  });
+  connect(objects_, &ObjectsPanel::objectSelected, this, [this](int index) {
+    const auto& mapping = session_->mapping();
+    if (!mapping) return;
+    keyframe_view_->ShowObject(index);
+    if (selecting_from_pick_) return;
+    const DetectedObject& o = mapping->result->objects[index];
+    scene_->FlyTo(mapping->x_gM() * o.centroid_m, 2.0 * mapping->overlays->object_radius[index]);
+  });
+  connect(objects_, &ObjectsPanel::zoneSelected, this, [this](int zone) {
+    const auto& mapping = session_->mapping();
+    if (!mapping || zone < 0 || zone >= static_cast<int>(mapping->overlays->zone_centres.size())) return;
+    const Eigen::Vector3d& c = mapping->overlays->zone_centres[zone];
+    if (!c.allFinite()) return;
+    scene_->FlyTo(mapping->x_gM() * c, 0.6 * mapping->overlays->zone_radius[zone]);
+  });
+  auto update_mesh = [this] {
+    const SurveyBundle* bundle = session_->bundle();
+    cross_section_->SetMesh(session_->mesh() ? session_->mesh()->mesh : nullptr,
+                            bundle ? bundle->manifest.model_axes : std::nullopt);
+  };
+  connect(session_, &Session::meshChanged, this, update_mesh);
+  connect(session_, &Session::surveyChanged, this, update_mesh);
+
+  connect(cross_section_, &CrossSectionView::slabMoved, this,
+          [this] { scene_->SetSlab(cross_section_->SlabBoxInG()); });
+  connect(cross_section_, &CrossSectionView::compareRequested, inspection_, &InspectionController::CompareModels);
+  connect(inspection_, &InspectionController::stateChanged, this,
+          [this] { cross_section_->SetCompareEnabled(inspection_->CanCompare()); });
+  connect(scene_, &SceneView::picked, this, [this](const PickInfo& info) {
+    cross_section_->SetPickedPoint(info.position);
+    const auto& mapping = session_->mapping();
+    if (info.kind != PickKind::kDetectedObject || !mapping) return;
+    const auto& objects = mapping->result->objects;
+    for (int i = 0; i < static_cast<int>(objects.size()); ++i) {
+      if (QString::fromStdString(objects[i].id) != info.id) continue;
+      selecting_from_pick_ = true;
+      objects_->SelectObject(i);
+      selecting_from_pick_ = false;
+    }
+  });
+
+  auto update_sigmas = [this](const ParameterValues& values) {
+    const AdjustmentOptions o = AdjustmentOptionsFrom(values);
+    solver_plots_->SetSigmas(o.sigma0, o.sigma1);
+  };
+  connect(parameters_, &ParameterPanel::parametersChanged, this, update_sigmas);
+  update_sigmas(parameters_->values());
+
+  connect(sonar_, &SonarPanel::runChanged, this, [this] {
+    sonar_dock_->show();
+    sonar_dock_->raise();
+  });
+  connect(exporter_, &ResultExporter::failed, this, &MainWindow::ReportError);
+  connect(exporter_, &ResultExporter::message, this,
+          [this](const QString& text) { statusBar()->showMessage(text, 8000); });
+  connect(session_, &Session::mappingChanged, this, &MainWindow::UpdateResultActions);
+  cross_section_->SetCompareEnabled(false);
+}
+
+void MainWindow::PrepareResultDocks() {
+  // The sonar view's OpenGL starts the first time its tab is shown (tens of
+  // milliseconds with a software OpenGL): do it now, while the window
+  // appears, rather than when the first sonar run arrives.
+  sonar_dock_->raise();
+  QTimer::singleShot(0, this, [this] { section_dock_->raise(); });
+}
+
+void MainWindow::CreateInspectionMenu() {
+  QMenu* inspect = menuBar()->addMenu(QStringLiteral("&Inspection"));
+  QAction* run = NewAction(
+      QStringLiteral("runInspection"), QStringLiteral("&Run"), this, [this] { inspection_->Run(); },
+      QKeySequence(Qt::Key_F5));
+  run->setToolTip(QStringLiteral("Align the survey to the model, run the bundle adjustment, then map"));
+  inspect->addAction(run);
+  QAction* compare = NewAction(QStringLiteral("compareModels"), QStringLiteral("&Compare models"), this,
+                               [this] { inspection_->CompareModels(); });
+  compare->setToolTip(
+      QStringLiteral("Also run the naive and all-on-surface models, for the cross-section and "
+                     "the solver plots"));
+  inspect->addAction(compare);
+  inspect->addAction(NewAction(
+      QStringLiteral("cancelJobs"), QStringLiteral("C&ancel"), jobs_, [this] { jobs_->CancelAll(); },
+      QKeySequence(Qt::Key_Escape)));
+}
+
+void MainWindow::AddResultFileEntries(QMenu* file) {
+  file->addAction(NewAction(QStringLiteral("openSonarSequence"), QStringLiteral("Open s&onar sequence…"), this,
+                            [this] { AskOpenSonarSequence(); }));
+}
+
+void MainWindow::AddResultExportEntries(QMenu* exports) {
+  exports->addAction(NewAction(QStringLiteral("exportModel"), QStringLiteral("&Remeshed model (PLY, OBJ, STL)…"), this,
+                               [this] { AskExportResult(QStringLiteral("model")); }));
+  exports->addAction(NewAction(QStringLiteral("exportObjects"), QStringLiteral("Detected &objects (CSV)…"), this,
+                               [this] { AskExportResult(QStringLiteral("objects")); }));
+  exports->addAction(NewAction(QStringLiteral("exportZones"), QStringLiteral("&Zones and ratings (CSV)…"), this,
+                               [this] { AskExportResult(QStringLiteral("zones")); }));
+  exports->addSeparator();
+  exports->addAction(NewAction(QStringLiteral("exportScreenshots"), QStringLiteral("&Screenshots of every view…"), this,
+                               [this] { AskExportScreenshots(); }));
+}
+
+void MainWindow::AddResultHelpEntries(QMenu* help) {
+  QMenu* sonar = help->addMenu(QStringLiteral("Open &sonar demo"));
+  const struct {
+    const char* name;
+    const char* preset;
+    const char* text;
+  } demos[] = {{"openSonarDemoPrism", "prism", "&Prism (the simulation of Mai et al.)"},
+               {"openSonarDemoTank", "tank", "&Tank (their experiment)"},
+               {"openSonarDemoAbove", "above", "&Above the object"}};
+  for (const auto& d : demos) {
+    const QString preset = QString::fromLatin1(d.preset);
+    sonar->addAction(NewAction(QString::fromLatin1(d.name), QString::fromUtf8(d.text), this,
+                               [this, preset] { sonar_->OpenDemo(preset); }));
+  }
+}
+
+void MainWindow::UpdateResultActions() {
+  if (QAction* a = action(QStringLiteral("runInspection"))) a->setEnabled(inspection_->CanRun());
+  if (QAction* a = action(QStringLiteral("compareModels"))) a->setEnabled(inspection_->CanCompare());
+  if (QAction* a = action(QStringLiteral("cancelJobs"))) a->setEnabled(jobs_->IsBusy());
+  for (const char* name : {"exportModel", "exportObjects", "exportZones"}) {
+    if (QAction* a = action(QString::fromLatin1(name))) a->setEnabled(exporter_ && exporter_->CanExport());
+  }
+}
+
+void MainWindow::AskOpenSonarSequence() {
+  const QString path = QFileDialog::getExistingDirectory(this, QStringLiteral("Open an acoustic sequence folder"));
+  if (!path.isEmpty()) sonar_->OpenSequence(path);
+}
+
+void MainWindow::AskExportResult(const QString& what) {
+  QString filter = QStringLiteral("CSV (*.csv)");
+  QString name = what + QStringLiteral(".csv");
+  if (what == QLatin1String("model")) {
+    filter = QStringLiteral("PLY with deviation (*.ply);;OBJ (*.obj);;STL (*.stl)");
+    for (const auto& p : plugin::Registry::Global().Plugins()) {  // exporter plugins: glTF, ...
+      for (const auto& e : p->result_exporters) {
+        QStringList patterns;
+        for (const std::string& x : e->Extensions()) patterns << QStringLiteral("*") + QString::fromStdString(x);
+        filter += QStringLiteral(";;%1 (%2)").arg(QString::fromStdString(e->Name()), patterns.join(QLatin1Char(' ')));
+      }
+    }
+    name = QStringLiteral("remeshed-model.ply");
+  }
+  const QString path = QFileDialog::getSaveFileName(this, QStringLiteral("Export"), name, filter);
+  if (path.isEmpty()) return;
+  if (what == QLatin1String("model")) {
+    exporter_->ExportModel(path);
+  } else if (what == QLatin1String("objects")) {
+    exporter_->ExportObjects(path);
+  } else {
+    exporter_->ExportZones(path);
+  }
+}
+
+QStringList MainWindow::SaveAllScreenshots(const QString& directory) {
+  QStringList written;
+  if (!QDir().mkpath(directory)) {
+    ReportError(QStringLiteral("Cannot save the screenshots"),
+                QStringLiteral("%1:\ncannot be created.").arg(QDir::toNativeSeparators(directory)));
+    return written;
+  }
+  for (QWidget* view : views_) {
+    if (!view->isVisible()) continue;  // a closed dock or a hidden tab
+    const QImage image = GrabView(view);
+    const QString path = QDir(directory).filePath(view->objectName() + QStringLiteral(".png"));
+    if (image.isNull() || !image.save(path, "PNG")) {
+      ReportError(QStringLiteral("Cannot save a screenshot"),
+                  QStringLiteral("%1:\ncannot be written.").arg(QDir::toNativeSeparators(path)));
+      continue;
+    }
+    written << path;
+  }
+  statusBar()->showMessage(
+      QStringLiteral("Saved %1 screenshots in %2").arg(written.size()).arg(QDir::toNativeSeparators(directory)), 8000);
+  return written;
+}
+
+void MainWindow::AskExportScreenshots() {
+  const QString dir = QFileDialog::getExistingDirectory(this, QStringLiteral("Save a screenshot of every view into"));
+  if (!dir.isEmpty()) SaveAllScreenshots(dir);
+}
+
+std::optional<ReportSource> MainWindow::CollectReport() const {
+  return CollectReportSource(*session_, parameters_->values(), inspection_->UpToDate());
+}
+
+}  // namespace hull::ui

@@ -1,0 +1,45 @@
+// What the info panel shows about a picked landmark, keyframe or object:
+// plain text rows built from the survey (no VTK, no widgets).
+#pragma once
+
+#include <QPair>
+#include <QString>
+#include <QVector>
+#include <optional>
+
+#include "geometry/pose.h"
+#include "survey/survey.h"
+#include "ui/session/inspection_results.h"
+#include "ui/session/survey_overlays.h"
+
+namespace hull::ui {
+
+enum class PickKind { kNone, kLandmark, kKeyframe, kObject, kDetectedObject };
+
+struct PickInfo {
+  PickKind kind = PickKind::kNone;
+  QString id;  // landmark or keyframe id, or object id
+  QString title;
+  QVector<QPair<QString, QString>> rows;    // label, value
+  std::optional<Eigen::Vector3d> position;  // where it is in g (set by the scene's pick)
+};
+
+// `index` is the landmark's position in overlays.landmarks.
+PickInfo DescribeLandmark(const SurveyOverlays& overlays, int index);
+// `index` is the landmark's position in adjusted.landmarks: id, label,
+// estimated deviation, observations and, with truth, the true deviation and
+// object.
+PickInfo DescribeAdjustedLandmark(const AdjustedOverlays& adjusted, int index);
+// `index` is the keyframe's position in adjusted.keyframes: as
+// DescribeKeyframe, with the adjusted position and how far it moved.
+PickInfo DescribeAdjustedKeyframe(const SurveyBundle& bundle, const SurveyOverlays& overlays,
+                                  const AdjustedOverlays& adjusted, int index);
+// `nav_index` is the keyframe's row of nav.csv.
+PickInfo DescribeKeyframe(const SurveyBundle& bundle, const SurveyOverlays& overlays, int nav_index);
+// `index` is the object's position in mapping.result->objects: where it is
+// on the hull, its footprint, heights, features and views.
+PickInfo DescribeDetectedObject(const MappingRun& mapping, int index);
+// `index` is the object's position in overlays.objects; x_gM places it in g.
+PickInfo DescribeObject(const SurveyBundle& bundle, const SurveyOverlays& overlays, int index, const Pose& x_gM);
+
+}  // namespace hull::ui

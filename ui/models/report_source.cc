@@ -1,0 +1,28 @@
+#include "ui/models/report_source.h"
+
+namespace hull::ui {
+
+std::optional<ReportSource> CollectReportSource(const Session& session, const ParameterValues& parameters,
+                                                bool up_to_date) {
+  if (!session.alignment() || !session.adjustment() || !session.survey() || !session.mesh()) return std::nullopt;
+  ReportSource r;
+  r.bundle_path = session.survey()->path;
+  r.mesh_path = session.mesh()->path;
+  r.bundle = session.survey()->bundle;
+  r.mesh = session.mesh()->mesh;
+  r.parameters = parameters;
+  r.up_to_date = up_to_date;
+  r.pipeline.alignment = *session.alignment();
+  const AdjustmentRun& run = *session.adjustment();
+  r.pipeline.adjustment = *run.result;
+  r.pipeline.evaluation = run.evaluation;
+  for (const auto& [model, other] : session.modelRuns()) {
+    if (model == run.model()) continue;
+    r.pipeline.baselines.push_back(*other->result);
+    if (other->evaluation) r.pipeline.baseline_evaluations.push_back(*other->evaluation);
+  }
+  if (session.mapping()) r.mapping = session.mapping()->result;
+  return r;
+}
+
+}  // namespace hull::ui

@@ -1,0 +1,235 @@
+#include "ui/session/inspection_parameters.h"
+
+#include <QStringList>
+#include <cmath>
+
+#include "base/error.h"
+#include "mapping/mapping_options.h"
+
+namespace hull::ui {
+
+namespace {
+
+using Stage = ParameterDescriptor::Stage;
+
+const QString kAdjust = QStringLiteral("Bundle adjustment");
+const QString kSolver = QStringLiteral("Solver limits");
+const QString kMap = QStringLiteral("Mapping");
+
+ParameterDescriptor Real(QString key, QString group, Stage stage, QString label, double min, double max, double def,
+                         int decimals, double step, QString unit, QString tooltip) {
+  ParameterDescriptor d;
+  d.key = std::move(key);
+  d.group = std::move(group);
+  d.stage = stage;
+  d.label = std::move(label);
+  d.type = ParameterDescriptor::Type::kReal;
+  d.minimum = min;
+  d.maximum = max;
+  d.default_value = def;
+  d.decimals = decimals;
+  d.step = step;
+  d.unit = std::move(unit);
+  d.tooltip = std::move(tooltip);
+  return d;
+}
+
+ParameterDescriptor Integer(QString key, QString group, Stage stage, QString label, int min, int max, int def,
+                            QString tooltip) {
+  ParameterDescriptor d =
+      Real(std::move(key), std::move(group), stage, std::move(label), min, max, def, 0, 1, {}, std::move(tooltip));
+  d.type = ParameterDescriptor::Type::kInteger;
+  return d;
+}
+
+ParameterDescriptor Choice(QString key, QString group, Stage stage, QString label, QStringList keys, QStringList labels,
+                           int def, QString tooltip) {
+  ParameterDescriptor d;
+  d.key = std::move(key);
+  d.group = std::move(group);
+  d.stage = stage;
+  d.label = std::move(label);
+  d.type = ParameterDescriptor::Type::kChoice;
+  d.choice_keys = std::move(keys);
+  d.choice_labels = std::move(labels);
+  d.minimum = 0;
+  d.maximum = d.choice_keys.size() - 1;
+  d.default_value = def;
+  d.tooltip = std::move(tooltip);
+  return d;
+}
+
+const SurfaceModel kModels[] = {SurfaceModel::kNaive, SurfaceModel::kAllOnSurface, SurfaceModel::kMaxMixture};
+
+ParameterTable MakeTable() {
+  const AdjustmentOptions a;
+  ParameterTable t;
+  QStringList model_keys, model_labels;
+  int model_default = 0;
+  for (int i = 0; i < 3; ++i) {
+    model_keys << ModelKey(kModels[i]);
+    model_labels << ModelLabel(kModels[i]);
+    if (kModels[i] == a.model) model_default = i;
+  }
+  t.push_back(Choice(QStringLiteral("model"), kAdjust, Stage::kAdjustment, QStringLiteral("Surface model"), model_keys,
+                     model_labels, model_default,
+                     QStringLiteral("How features relate to the CAD surface: ignored, all constrained to it, or each "
+                                    "labelled on/off the surface by a max-mixture of the two Gaussians below.")));
+  t.push_back(Real(QStringLiteral("sigma0"), kAdjust, Stage::kAdjustment, QStringLiteral("σ₀ (off surface)"), 0.01,
+                   10.0, a.sigma0, 3, 0.05, QStringLiteral("m"),
+                   QStringLiteral("Standard deviation of the surface constraint for features off the model "
+                                  "(λ = 0). The paper uses 1 m; the value matters little.")));
+  t.push_back(Real(QStringLiteral("sigma1"), kAdjust, Stage::kAdjustment, QStringLiteral("σ₁ (on surface)"), 0.001, 1.0,
+                   a.sigma1, 3, 0.005, QStringLiteral("m"),
+                   QStringLiteral("Standard deviation of the surface constraint for features on the model "
+                                  "(λ = 1). With σ₀ = 1 m, σ₁ = 2 cm puts the decision boundary at about ±5.6 cm, "
+                                  "the smallest object found; 1–5 cm suits ship hulls.")));
+  t.push_back(Choice(QStringLiteral("lookup"), kAdjust, Stage::kAdjustment, QStringLiteral("Closest face by"),
+                     {QStringLiteral("closest-face"), QStringLiteral("nearest-vertex")},
+                     {QStringLiteral("Exact closest point"), QStringLiteral("Nearest vertex (the paper)")},
+                     a.lookup == SurfaceLookup::kClosestFace ? 0 : 1,
+                     QStringLiteral("How the signed distance h finds its face: the exact closest point, or the "
+                                    "paper's nearest vertex and any adjacent face.")));
+  t.push_back(Integer(QStringLiteral("max_iterations"), kSolver, Stage::kAdjustment, QStringLiteral("Iterations"), 1,
+                      1000, a.max_iterations,
+                      QStringLiteral("Levenberg–Marquardt iterations at most per solve before the solver stops.")));
+  t.push_back(Integer(QStringLiteral("rejection_rounds"), kSolver, Stage::kAdjustment, QStringLiteral("Outlier rounds"),
+                      0, 10, a.rejection_rounds,
+                      QStringLiteral("How many times observations with large reprojection errors (wrong matches) "
+                                     "are removed and the problem solved again; 0 keeps every observation.")));
+  const MappingOptions m;
+  t.push_back(Real(QStringLiteral("tau"), kMap, Stage::kMapping, QStringLiteral("τ (cluster threshold)"), 0.0, 1.0,
+                   m.tau, 3, 0.01, QStringLiteral("m"),
+                   QStringLiteral("Features whose |deviation| exceeds τ are clustered into shapes. 0 gives the "
+                                  "most detail; 0.06 m fewer false positives.")));
+  t.push_back(Real(QStringLiteral("alpha"), kMap, Stage::kMapping, QStringLiteral("α (alpha shapes)"), 0.005, 2.0,
+                   m.alpha, 3, 0.01, QStringLiteral("m"),
+                   QStringLiteral("Radius of the alpha shapes meshed over each cluster: larger values bridge wider "
+                                  "gaps between features.")));
+  t.push_back(Real(QStringLiteral("dbscan_eps"), kMap, Stage::kMapping, QStringLiteral("DBSCAN ε"), 0.001, 2.0,
+                   m.dbscan_eps, 3, 0.005, QStringLiteral("m"),
+                   QStringLiteral("DBSCAN's neighbourhood radius over the features' camera-frame positions.")));
+  t.push_back(Integer(QStringLiteral("dbscan_min_points"), kMap, Stage::kMapping, QStringLiteral("DBSCAN min. points"),
+                      1, 1000, m.dbscan_min_points,
+                      QStringLiteral("Points a cluster needs at least; fewer are noise (the paper uses 3).")));
+  t.push_back(Real(QStringLiteral("object_min_height"), kMap, Stage::kMapping, QStringLiteral("Object height h_min"),
+                   0.001, 1.0, m.object_min_height, 3, 0.005, QStringLiteral("m"),
+                   QStringLiteral("A detected object is where the remeshed model stands more than this far off the "
+                                  "CAD surface ...")));
+  t.push_back(Real(QStringLiteral("object_min_area"), kMap, Stage::kMapping, QStringLiteral("Object min. area"), 0.0,
+                   10.0, m.object_min_area, 3, 0.005, QStringLiteral("m²"),
+                   QStringLiteral("... over at least this footprint area.")));
+  return t;
+}
+
+// Fields of one stage as "key=value" in table order; `skip` leaves some out.
+QString StageText(const ParameterValues& values, Stage stage, const QStringList& skip = {}) {
+  QStringList parts;
+  for (const ParameterDescriptor& d : DefaultParameterTable()) {
+    if (d.stage != stage || skip.contains(d.key)) continue;
+    const QVariant v = values.value(d.key, d.DefaultValue());
+    parts << d.key + QLatin1Char('=') +
+                 (d.type == ParameterDescriptor::Type::kReal ? QString::number(v.toDouble(), 'g', 12) : v.toString());
+  }
+  return parts.join(QLatin1Char(';'));
+}
+
+}  // namespace
+
+QString ModelKey(SurfaceModel model) { return QString::fromLatin1(SurfaceModelName(model)); }
+
+QString ModelLabel(SurfaceModel model) {
+  switch (model) {
+    case SurfaceModel::kNaive:
+      return QStringLiteral("Naive (no surface constraint)");
+    case SurfaceModel::kAllOnSurface:
+      return QStringLiteral("All on the surface (Geva et al.)");
+    case SurfaceModel::kMaxMixture:
+      return QStringLiteral("Max-mixture (Ozog et al.)");
+  }
+  return {};
+}
+
+SurfaceModel ModelFromKey(const QString& key) {
+  for (SurfaceModel m : kModels) {
+    if (ModelKey(m) == key) return m;
+  }
+  return SurfaceModel::kMaxMixture;
+}
+
+const ParameterTable& DefaultParameterTable() {
+  static const ParameterTable table = MakeTable();
+  return table;
+}
+
+std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values) {
+  std::vector<ParameterError> errors = CheckAgainstTable(DefaultParameterTable(), values);
+  if (!errors.empty()) return errors;
+  const double sigma0 = values.value(QStringLiteral("sigma0")).toDouble();
+  const double sigma1 = values.value(QStringLiteral("sigma1")).toDouble();
+  if (!(sigma1 < sigma0)) {
+    errors.push_back({QStringLiteral("sigma1"),
+                      QStringLiteral("σ₁ must be smaller than σ₀ (%1 m): on-surface features are the tightly "
+                                     "constrained ones")
+                          .arg(sigma0)});
+    return errors;
+  }
+  try {
+    AdjustmentOptionsFrom(values).Check();
+    MappingOptionsFrom(values).Check();
+  } catch (const OptionError& e) {
+    errors.push_back({QString::fromStdString(e.field()), QString::fromStdString(e.what())});
+  }
+  return errors;
+}
+
+AdjustmentOptions AdjustmentOptionsFrom(const ParameterValues& values) {
+  AdjustmentOptions o;
+  o.model = ModelFromKey(values.value(QStringLiteral("model")).toString());
+  o.sigma0 = values.value(QStringLiteral("sigma0"), o.sigma0).toDouble();
+  o.sigma1 = values.value(QStringLiteral("sigma1"), o.sigma1).toDouble();
+  o.lookup = values.value(QStringLiteral("lookup")).toString() == QLatin1String("nearest-vertex")
+                 ? SurfaceLookup::kNearestVertex
+                 : SurfaceLookup::kClosestFace;
+  o.max_iterations = values.value(QStringLiteral("max_iterations"), o.max_iterations).toInt();
+  o.rejection_rounds = values.value(QStringLiteral("rejection_rounds"), o.rejection_rounds).toInt();
+  return o;
+}
+
+MappingOptions MappingOptionsFrom(const ParameterValues& values) {
+  MappingOptions o;
+  o.tau = values.value(QStringLiteral("tau"), o.tau).toDouble();
+  o.alpha = values.value(QStringLiteral("alpha"), o.alpha).toDouble();
+  o.dbscan_eps = values.value(QStringLiteral("dbscan_eps"), o.dbscan_eps).toDouble();
+  o.dbscan_min_points = values.value(QStringLiteral("dbscan_min_points"), o.dbscan_min_points).toInt();
+  o.object_min_height = values.value(QStringLiteral("object_min_height"), o.object_min_height).toDouble();
+  o.object_min_area = values.value(QStringLiteral("object_min_area"), o.object_min_area).toDouble();
+  return o;
+}
+
+QString AdjustmentKey(const ParameterValues& values) {
+  QStringList skip;
+  switch (ModelFromKey(values.value(QStringLiteral("model")).toString())) {
+    case SurfaceModel::kNaive:
+      skip << QStringLiteral("sigma0") << QStringLiteral("sigma1");
+      break;
+    case SurfaceModel::kAllOnSurface:
+      skip << QStringLiteral("sigma0");
+      break;
+    case SurfaceModel::kMaxMixture:
+      break;
+  }
+  return StageText(values, Stage::kAdjustment, skip);
+}
+
+QString MappingKey(const ParameterValues& values) {
+  return AdjustmentKey(values) + QStringLiteral("|") + StageText(values, Stage::kMapping);
+}
+
+ParameterValues WithModel(const ParameterValues& values, SurfaceModel model) {
+  ParameterValues v = values;
+  v.insert(QStringLiteral("model"), ModelKey(model));
+  return v;
+}
+
+}  // namespace hull::ui

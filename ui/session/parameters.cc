@@ -1,0 +1,88 @@
+#include "ui/session/parameters.h"
+
+#include <cmath>
+
+namespace hull::ui {
+
+QVariant ParameterDescriptor::DefaultValue() const {
+  switch (type) {
+    case Type::kReal:
+      return default_value;
+    case Type::kInteger:
+      return static_cast<int>(default_value);
+    case Type::kChoice:
+      return choice_keys.value(static_cast<int>(default_value));
+  }
+  return {};
+}
+
+ParameterValues DefaultValues(const ParameterTable& table) {
+  ParameterValues v;
+  for (const ParameterDescriptor& d : table) v.insert(d.key, d.DefaultValue());
+  return v;
+}
+
+const ParameterDescriptor* FindParameter(const ParameterTable& table, const QString& key) {
+  for (const ParameterDescriptor& d : table) {
+    if (d.key == key) return &d;
+  }
+  return nullptr;
+}
+
+bool CoerceValue(const ParameterDescriptor& d, const QVariant& in, QVariant* out) {
+  switch (d.type) {
+    case ParameterDescriptor::Type::kReal: {
+      bool ok = false;
+      const double x = in.toDouble(&ok);
+      if (!ok || !std::isfinite(x) || in.type() == QVariant::String || in.type() == QVariant::Bool) return false;
+      *out = x;
+      return true;
+    }
+    case ParameterDescriptor::Type::kInteger: {
+      bool ok = false;
+      const double x = in.toDouble(&ok);
+      if (!ok || in.type() == QVariant::String || in.type() == QVariant::Bool || x != std::floor(x) ||
+          std::abs(x) > 1e9) {
+        return false;
+      }
+      *out = static_cast<int>(x);
+      return true;
+    }
+    case ParameterDescriptor::Type::kChoice:
+      if (in.type() != QVariant::String || !d.choice_keys.contains(in.toString())) return false;
+      *out = in.toString();
+      return true;
+  }
+  return false;
+}
+
+std::vector<ParameterError> CheckAgainstTable(const ParameterTable& table, const ParameterValues& values) {
+  std::vector<ParameterError> errors;
+  for (const ParameterDescriptor& d : table) {
+    if (!values.contains(d.key)) {
+      errors.push_back({d.key, QStringLiteral("missing")});
+      continue;
+    }
+    QVariant v;
+    if (!CoerceValue(d, values.value(d.key), &v)) {
+      errors.push_back(
+          {d.key, d.type == ParameterDescriptor::Type::kChoice
+                      ? QStringLiteral("expected one of: %1").arg(d.choice_keys.join(QStringLiteral(", ")))
+                      : (d.type == ParameterDescriptor::Type::kInteger ? QStringLiteral("expected a whole number")
+                                                                       : QStringLiteral("expected a number"))});
+      continue;
+    }
+    if (d.type == ParameterDescriptor::Type::kChoice) continue;
+    const double x = v.toDouble();
+    if (x < d.minimum || x > d.maximum) {
+      errors.push_back({d.key, QStringLiteral("%1 is outside [%2, %3]%4")
+                                   .arg(x)
+                                   .arg(d.minimum)
+                                   .arg(d.maximum)
+                                   .arg(d.unit.isEmpty() ? QString() : QStringLiteral(" ") + d.unit)});
+    }
+  }
+  return errors;
+}
+
+}  // namespace hull::ui

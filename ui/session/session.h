@@ -1,0 +1,101 @@
+// What is open: the hull mesh, the survey bundle (with what the scene draws
+// of it), where the model is placed in g, and the pipeline's results for
+// them (the alignment, the adjustment on screen, the runs of each surface
+// model for the comparison and the mapping on screen). The document of the application; views and
+// panels follow its signals. Opening another mesh or survey drops the
+// results.
+#pragma once
+
+#include <QObject>
+#include <QString>
+#include <map>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "geometry/pose.h"
+#include "geometry/triangle_mesh.h"
+#include "registration/model_alignment.h"
+#include "survey/survey.h"
+#include "ui/session/inspection_results.h"
+#include "ui/session/survey_overlays.h"
+
+namespace hull::ui {
+
+struct LoadedMesh {
+  QString path;
+  std::shared_ptr<const TriangleMesh> mesh;  // in M
+};
+
+struct LoadedSurvey {
+  QString path;  // the bundle folder
+  std::shared_ptr<const SurveyBundle> bundle;
+  std::shared_ptr<const SurveyOverlays> overlays;
+};
+
+class Session : public QObject {
+  Q_OBJECT
+
+ public:
+  explicit Session(QObject* parent = nullptr);
+
+  const std::optional<LoadedMesh>& mesh() const { return mesh_; }
+  const std::optional<LoadedSurvey>& survey() const { return survey_; }
+  const SurveyBundle* bundle() const { return survey_ ? survey_->bundle.get() : nullptr; }
+
+  void SetMesh(LoadedMesh mesh);
+  // Also picks the placement: `preferred` when the survey offers it, else the
+  // best available (truth, then the guess, then identity).
+  void SetSurvey(LoadedSurvey survey, std::optional<ModelPlacement> preferred = std::nullopt);
+  void ClearMesh();
+  void ClearSurvey();
+
+  ModelPlacement placement() const { return placement_; }
+  std::vector<ModelPlacement> AvailablePlacements() const;
+  void SetPlacement(ModelPlacement placement);
+  // x_gM: places the mesh (frame M) in the survey frame g.
+  Pose ModelPose() const;
+
+  // The pipeline's results (nullptr: none yet).
+  using ModelRuns = std::map<SurfaceModel, std::shared_ptr<const AdjustmentRun>>;
+  const std::shared_ptr<const ModelAlignment>& alignment() const { return alignment_; }
+  const std::shared_ptr<const AdjustmentRun>& adjustment() const { return adjustment_; }
+  // The run of each surface model for the current parameters, as far as
+  // they were computed (the adjustment on screen is one of them).
+  const ModelRuns& modelRuns() const { return model_runs_; }
+  void SetAlignment(std::shared_ptr<const ModelAlignment> alignment);
+  // The first adjustment, and any while the model is placed by the
+  // adjustment, places the model by its x_gM.
+  void SetAdjustment(std::shared_ptr<const AdjustmentRun> run);
+  void SetModelRuns(ModelRuns runs);
+  // The mapping on screen (of the adjustment on screen, normally).
+  const std::shared_ptr<const MappingRun>& mapping() const { return mapping_; }
+  void SetMapping(std::shared_ptr<const MappingRun> run);
+  void ClearResults();
+
+  // The project file this session was last saved to or opened from ("" if none).
+  const QString& projectPath() const { return project_path_; }
+  void SetProjectPath(const QString& path);
+
+ signals:
+  void meshChanged();
+  void surveyChanged();
+  void placementChanged();
+  void projectPathChanged();
+  void alignmentChanged();
+  void adjustmentChanged();
+  void modelRunsChanged();
+  void mappingChanged();
+
+ private:
+  std::optional<LoadedMesh> mesh_;
+  std::optional<LoadedSurvey> survey_;
+  ModelPlacement placement_ = ModelPlacement::kIdentity;
+  QString project_path_;
+  std::shared_ptr<const ModelAlignment> alignment_;
+  std::shared_ptr<const AdjustmentRun> adjustment_;
+  ModelRuns model_runs_;
+  std::shared_ptr<const MappingRun> mapping_;
+};
+
+}  // namespace hull::ui

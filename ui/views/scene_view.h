@@ -1,0 +1,115 @@
+// The 3-D scene: the hull model placed in the survey frame g (z down), the
+// trajectory, DVL hits, landmarks, the true objects' outlines and camera
+// frusta, with a colour legend when landmarks are coloured by deviation and
+// picking of landmarks, keyframes and objects.
+//
+// A QWidget around a QVTKOpenGLNativeWidget. This header is VTK-free: the
+// view owns its actors in SceneViewImpl (scene_view_impl.*), and callers
+// speak in survey types, SceneOptions and CameraState.
+#pragma once
+
+#include <QImage>
+#include <QPoint>
+#include <QSurfaceFormat>
+#include <QWidget>
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "geometry/pose.h"
+#include "geometry/triangle_mesh.h"
+#include "survey/survey.h"
+#include "ui/models/cross_section.h"
+#include "ui/models/pick_details.h"
+#include "ui/session/inspection_results.h"
+#include "ui/session/scene_options.h"
+#include "ui/session/survey_overlays.h"
+#include "ui/views/render_coalescer.h"
+
+class QTimer;
+class QVTKOpenGLNativeWidget;
+
+namespace hull::ui {
+
+class SceneViewImpl;
+
+class SceneView : public QWidget {
+  Q_OBJECT
+
+ public:
+  explicit SceneView(QWidget* parent = nullptr);
+  ~SceneView() override;
+
+  // The OpenGL format VTK needs; set it as the default before QApplication.
+  static QSurfaceFormat SurfaceFormat();
+
+  // The hull in its own frame M (nullptr removes it); shown placed by x_gM.
+  void SetMesh(std::shared_ptr<const TriangleMesh> mesh);
+  void SetModelPose(const Pose& x_gM);
+  // The survey and what to draw of it (both nullptr removes it).
+  void SetSurvey(std::shared_ptr<const SurveyBundle> bundle, std::shared_ptr<const SurveyOverlays> overlays);
+  // The bundle adjustment's trajectory, DVL hits and landmarks (nullptr removes them).
+  void SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted);
+  // Mapping's fused model (heatmap), alpha shapes and detected objects
+  // (nullptr removes them).
+  void SetMapping(std::shared_ptr<const MappingRun> mapping);
+  // The cross-section slab (nullopt removes it).
+  void SetSlab(const std::optional<SlabBox>& slab);
+  void SetOptions(const SceneOptions& options);
+  const SceneOptions& options() const;
+
+  // Looks at the survey (or the whole hull without one) from below, the
+  // hull's forward direction up on the screen.
+  void ResetCamera();
+  CameraState Camera() const;
+  void SetCamera(const CameraState& camera);
+  // Moves the camera (animated over about 0.3 s) to look at p_g from the
+  // current direction, from far enough to see a sphere of `radius` metres.
+  void FlyTo(const Eigen::Vector3d& p_g, double radius);
+
+  // The rendered image at the widget's size (vtkWindowToImageFilter); a null
+  // image while the widget has never been shown.
+  QImage Grab();
+
+  // What a layer holds, for status text and tests.
+  struct LayerStats {
+    bool present = false;  // has data
+    bool visible = false;  // present and switched on
+    long long points = 0;
+    long long cells = 0;
+  };
+  LayerStats Stats(SceneLayer layer) const;
+  bool LegendVisible() const;
+  std::pair<double, double> LegendRange() const;
+
+  // Picks at a widget position (as a click does) and emits picked().
+  PickInfo PickAt(const QPoint& position);
+  // Where a point of g appears in the widget (nullopt when not rendered yet).
+  std::optional<QPoint> WidgetPosition(const Eigen::Vector3d& p_g) const;
+
+ signals:
+  // After a click: what is under the cursor (kind kNone: nothing).
+  void picked(const hull::ui::PickInfo& info);
+
+ protected:
+  bool eventFilter(QObject* watched, QEvent* event) override;
+  void showEvent(QShowEvent* event) override;
+
+ private:
+  void ScheduleRender();
+  void RenderNow();  // the coalesced frame
+  void StepFlight();
+
+  QVTKOpenGLNativeWidget* vtk_widget_ = nullptr;
+  RenderCoalescer render_{this, [this] { RenderNow(); }};
+  std::unique_ptr<SceneViewImpl> impl_;
+  QPoint press_position_;
+  bool press_valid_ = false;
+  bool warmed_up_ = false;
+  // The flight in progress (FlyTo).
+  QTimer* flight_timer_ = nullptr;
+  CameraState flight_from_, flight_to_;
+  int flight_step_ = 0;
+};
+
+}  // namespace hull::ui

@@ -1,0 +1,522 @@
+#include "ui/views/scene_view_impl.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
+#include <vtkDataArray.h>
+#include <vtkGenericOpenGLRenderWindow.h>
+#include <vtkImageData.h>
+#include <vtkLookupTable.h>
+#include <vtkMatrix4x4.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPointPicker.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkScalarBarActor.h>
+#include <vtkTextProperty.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "ui/views/scene_layers_impl.h"
+#include "ui/views/scene_polydata_impl.h"
+#include "ui/views/vtk_grab_impl.h"
+
+namespace hull::ui {
+
+namespace {
+
+constexpr double kBackgroundBottom[3] = {0.02, 0.07, 0.13};
+constexpr double kBackgroundTop[3] = {0.10, 0.25, 0.38};
+
+}  // namespace
+
+SceneViewImpl::SceneViewImpl() {
+  // Points and lines that lie on a surface are drawn in front of it (VTK's
+  // polygon offset; a process-wide mapper setting, which every view wants).
+  vtkMapper::SetResolveCoincidentTopologyToPolygonOffset();
+  window_ = vtkSmartPointer<vtkGenericOpenGLRenderWindow>::New();
+  // No multisampling: with a software OpenGL (Mesa's llvmpipe under Xvfb)
+  // VTK's default 8x MSAA multiplies the cost of every frame, and a frame
+  // is drawn on the GUI thread.
+  window_->SetMultiSamples(0);
+  renderer_ = vtkSmartPointer<vtkRenderer>::New();
+  renderer_->GradientBackgroundOn();
+  renderer_->SetBackground(kBackgroundBottom[0], kBackgroundBottom[1], kBackgroundBottom[2]);
+  renderer_->SetBackground2(kBackgroundTop[0], kBackgroundTop[1], kBackgroundTop[2]);
+  window_->AddRenderer(renderer_);
+
+  for (SceneLayer layer : AllSceneLayers()) {
+    vtkActor* actor = AddActor();
+    actors_[layer] = actor;
+    StyleLayerActor(layer, actor);
+  }
+  selection_ = AddActor();
+  selection_->GetProperty()->SetColor(1.0, 1.0, 1.0);
+  selection_->GetProperty()->SetPointSize(13.0);
+  selection_->GetProperty()->LightingOff();
+  selection_->PickableOff();
+  selection_->VisibilityOff();
+
+  // Moreland's cool-to-warm diverging map, sampled into a lookup table that
+  // the landmark mapper and the legend share.
+  vtkNew<vtkColorTransferFunction> ctf;
+  ctf->SetColorSpaceToDiverging();
+  ctf->AddRGBPoint(0.0, 0.230, 0.299, 0.754);
+  ctf->AddRGBPoint(0.5, 0.865, 0.865, 0.865);
+  ctf->AddRGBPoint(1.0, 0.706, 0.016, 0.150);
+  deviation_lut_ = vtkSmartPointer<vtkLookupTable>::New();
+  deviation_lut_->SetNumberOfTableValues(256);
+  for (int i = 0; i < 256; ++i) {
+    double rgb[3];
+    ctf->GetColor(i / 255.0, rgb);
+    deviation_lut_->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
+  }
+  deviation_lut_->Build();
+
+  legend_ = vtkSmartPointer<vtkScalarBarActor>::New();
+  legend_->SetLookupTable(deviation_lut_);
+  legend_->SetTitle("Deviation (m)");
+  legend_->SetNumberOfLabels(5);
+  legend_->SetLabelFormat("%+.3f");
+  legend_->SetMaximumWidthInPixels(110);
+  legend_->GetPositionCoordinate()->SetValue(0.85, 0.05);
+  legend_->SetWidth(0.13);
+  legend_->SetHeight(0.6);
+  legend_->UnconstrainedFontSizeOn();
+  legend_->SetVerticalTitleSeparation(6);
+  legend_->GetTitleTextProperty()->SetFontSize(14);
+  legend_->GetLabelTextProperty()->SetFontSize(12);
+  legend_->GetTitleTextProperty()->ItalicOff();
+  legend_->GetTitleTextProperty()->ShadowOff();
+  legend_->GetLabelTextProperty()->ItalicOff();
+  legend_->GetLabelTextProperty()->ShadowOff();
+  legend_->VisibilityOff();
+  renderer_->AddViewProp(legend_);
+
+  picker_ = vtkSmartPointer<vtkPointPicker>::New();
+  picker_->SetTolerance(0.01);
+  picker_->PickFromListOn();
+
+  UpdateVisibility();
+}
+
+SceneViewImpl::~SceneViewImpl() = default;
+
+vtkActor* SceneViewImpl::AddActor() {
+  vtkNew<vtkPolyDataMapper> mapper;
+  mapper->SetInputData(vtkSmartPointer<vtkPolyData>::New());
+  mapper->ScalarVisibilityOff();
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer_->AddActor(actor);
+  return actor.GetPointer();  // the renderer holds it
+}
+
+void SceneViewImpl::SetMesh(std::shared_ptr<const TriangleMesh> mesh) {
+  mesh_ = std::move(mesh);
+  SetData(actors_[SceneLayer::kHull], mesh_ ? MeshPolyData(*mesh_) : vtkSmartPointer<vtkPolyData>::New());
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetModelPose(const Pose& x_gM) {
+  x_gM_ = x_gM;
+  actors_[SceneLayer::kHull]->SetUserMatrix(PoseMatrix(x_gM));
+  actors_[SceneLayer::kTruthObjects]->SetUserMatrix(PoseMatrix(x_gM));
+}
+
+void SceneViewImpl::SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted) {
+  adjusted_ = std::move(adjusted);
+  static const AdjustedOverlays kEmpty;
+  const AdjustedOverlays& a = adjusted_ ? *adjusted_ : kEmpty;
+  SetData(actors_[SceneLayer::kAdjustedTrajectory], PolylinePolyData(a.trajectory));
+  std::vector<Eigen::Vector3d> hits;
+  hits.reserve(a.dvl_hits.size());
+  for (const DvlHit& h : a.dvl_hits) hits.push_back(h.point);
+  SetData(actors_[SceneLayer::kAdjustedDvlHits], PointCloudPolyData(hits));
+  SetData(actors_[SceneLayer::kAdjustedLandmarks], AdjustedLandmarksPolyData(a.landmarks));
+  selection_->VisibilityOff();
+  UpdateLandmarkColours();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetMapping(std::shared_ptr<const MappingRun> mapping) {
+  mapping_ = std::move(mapping);
+  if (mapping_) {
+    SetData(actors_[SceneLayer::kHeatmap], HeatmapPolyData(mapping_->result->model));
+    SetData(actors_[SceneLayer::kAlphaShapes], AlphaShapesPolyData(mapping_->result->keyframes));
+    SetData(actors_[SceneLayer::kDetectedObjects], SegmentsPolyData(mapping_->overlays->object_outlines));
+    const auto matrix = PoseMatrix(mapping_->x_gM());
+    actors_[SceneLayer::kHeatmap]->SetUserMatrix(matrix);
+    actors_[SceneLayer::kDetectedObjects]->SetUserMatrix(matrix);
+  } else {
+    for (SceneLayer layer : {SceneLayer::kHeatmap, SceneLayer::kAlphaShapes, SceneLayer::kDetectedObjects}) {
+      SetData(actors_[layer], vtkSmartPointer<vtkPolyData>::New());
+    }
+  }
+  selection_->VisibilityOff();
+  UpdateLandmarkColours();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetSlab(const std::optional<SlabBox>& slab) {
+  SetData(actors_[SceneLayer::kSlab], slab ? SlabPolyData(*slab) : vtkSmartPointer<vtkPolyData>::New());
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetSurvey(std::shared_ptr<const SurveyBundle> bundle,
+                              std::shared_ptr<const SurveyOverlays> overlays) {
+  if (!bundle || !overlays) {
+    bundle.reset();
+    overlays.reset();
+  }
+  bundle_ = std::move(bundle);
+  overlays_ = std::move(overlays);
+  static const SurveyOverlays kEmpty;
+  const SurveyOverlays& o = overlays_ ? *overlays_ : kEmpty;
+  SetData(actors_[SceneLayer::kTrajectory], PolylinePolyData(o.trajectory));
+  SetData(actors_[SceneLayer::kTrueTrajectory], PolylinePolyData(o.true_trajectory));
+  std::vector<Eigen::Vector3d> hits;
+  hits.reserve(o.dvl_hits.size());
+  for (const DvlHit& h : o.dvl_hits) hits.push_back(h.point);
+  SetData(actors_[SceneLayer::kDvlHits], PointCloudPolyData(hits));
+  SetData(actors_[SceneLayer::kLandmarks], LandmarksPolyData(o.landmarks));
+  SetData(actors_[SceneLayer::kTruthObjects], OutlinesPolyData(o.objects));
+  frusta_stride_built_ = 0;
+  selection_->VisibilityOff();
+  UpdateLandmarkColours();
+  UpdateFrusta();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetOptions(const SceneOptions& options) {
+  options_ = options;
+  vtkProperty* hull = actors_[SceneLayer::kHull]->GetProperty();
+  hull->SetEdgeVisibility(options_.hull_edges);
+  UpdateLandmarkColours();
+  UpdateFrusta();
+  UpdateVisibility();
+}
+
+bool SceneViewImpl::HasLayerData(SceneLayer layer) const {
+  vtkPolyData* data = DataOf(actors_.at(layer));
+  return data && data->GetNumberOfPoints() > 0;
+}
+
+long long SceneViewImpl::LayerPoints(SceneLayer layer) const {
+  vtkPolyData* data = DataOf(actors_.at(layer));
+  return data ? data->GetNumberOfPoints() : 0;
+}
+
+long long SceneViewImpl::LayerCells(SceneLayer layer) const {
+  vtkPolyData* data = DataOf(actors_.at(layer));
+  return data ? data->GetNumberOfCells() : 0;
+}
+
+void SceneViewImpl::UpdateVisibility() {
+  for (auto& [layer, actor] : actors_) actor->SetVisibility(options_.IsVisible(layer) && HasLayerData(layer));
+  legend_->SetVisibility(LegendVisible());
+}
+
+bool SceneViewImpl::TruthDeviationsShown() const {
+  return options_.IsVisible(SceneLayer::kLandmarks) && overlays_ &&
+         overlays_->landmark_source == LandmarkSource::kTruth && !overlays_->landmarks.empty();
+}
+
+bool SceneViewImpl::AdjustedDeviationsShown() const {
+  return options_.IsVisible(SceneLayer::kAdjustedLandmarks) && adjusted_ && !adjusted_->landmarks.empty();
+}
+
+bool SceneViewImpl::HeatmapShown() const {
+  return options_.IsVisible(SceneLayer::kHeatmap) && mapping_ && !mapping_->result->model.empty();
+}
+
+bool SceneViewImpl::LegendVisible() const {
+  return HeatmapShown() ||
+         (options_.colouring == LandmarkColouring::kDeviation && (TruthDeviationsShown() || AdjustedDeviationsShown()));
+}
+
+std::pair<double, double> SceneViewImpl::EffectiveRange() const {
+  if (!options_.auto_range) return {options_.range_min, options_.range_max};
+  // Symmetric about zero so that the neutral colour means "on the surface",
+  // reaching the largest |deviation| of the visible layers that carry one.
+  double m = 1e-3;
+  if (TruthDeviationsShown()) m = std::max({m, std::abs(overlays_->min_deviation), std::abs(overlays_->max_deviation)});
+  if (AdjustedDeviationsShown()) {
+    m = std::max({m, std::abs(adjusted_->min_deviation), std::abs(adjusted_->max_deviation)});
+  }
+  if (HeatmapShown()) {
+    m = std::max({m, std::abs(mapping_->overlays->min_deviation), std::abs(mapping_->overlays->max_deviation)});
+  }
+  return {-m, m};
+}
+
+std::pair<double, double> SceneViewImpl::LegendRange() const { return EffectiveRange(); }
+
+void SceneViewImpl::UpdateLandmarkColours() {
+  const auto [lo, hi] = EffectiveRange();
+  deviation_lut_->SetTableRange(lo, std::max(hi, lo + 1e-6));
+  for (SceneLayer layer : {SceneLayer::kLandmarks, SceneLayer::kAdjustedLandmarks}) {
+    ColourLandmarks(MapperOf(actors_[layer]));
+  }
+  vtkPolyDataMapper* heatmap = MapperOf(actors_[SceneLayer::kHeatmap]);
+  heatmap->ScalarVisibilityOn();
+  heatmap->SetScalarModeToUsePointFieldData();
+  heatmap->SelectColorArray("deviation");
+  heatmap->SetColorModeToMapScalars();
+  heatmap->SetLookupTable(deviation_lut_);
+  heatmap->UseLookupTableScalarRangeOn();
+  heatmap->Modified();
+}
+
+void SceneViewImpl::ColourLandmarks(vtkPolyDataMapper* mapper) {
+  mapper->ScalarVisibilityOn();
+  mapper->SetScalarModeToUsePointFieldData();
+  if (options_.colouring == LandmarkColouring::kLabel) {
+    mapper->SelectColorArray("label_rgb");
+    mapper->SetColorModeToDirectScalars();
+  } else {
+    mapper->SelectColorArray("deviation");
+    mapper->SetColorModeToMapScalars();
+    mapper->SetLookupTable(deviation_lut_);
+    mapper->UseLookupTableScalarRangeOn();
+  }
+  mapper->Modified();
+}
+
+void SceneViewImpl::UpdateFrusta() {
+  vtkActor* actor = actors_[SceneLayer::kFrusta];
+  const bool wanted = bundle_ && options_.IsVisible(SceneLayer::kFrusta);
+  if (!wanted) {
+    if (frusta_stride_built_ != 0) SetData(actor, vtkSmartPointer<vtkPolyData>::New());
+    frusta_stride_built_ = 0;
+    return;
+  }
+  const int stride = std::max(1, options_.frustum_stride);
+  if (stride == frusta_stride_built_) return;
+  SetData(actor, FrustaPolyData(ComputeFrusta(*bundle_, stride)));
+  frusta_stride_built_ = stride;
+}
+
+void SceneViewImpl::ResetCamera() {
+  Eigen::AlignedBox3d box;
+  if (overlays_ && !overlays_->bounds.isEmpty()) {
+    box = overlays_->bounds;
+  } else if (mesh_ && !mesh_->empty()) {
+    for (const auto& v : mesh_->vertices) box.extend(x_gM_ * v);
+  } else {
+    box.extend(Eigen::Vector3d(-1, -1, -1));
+    box.extend(Eigen::Vector3d(1, 1, 1));
+  }
+  // The hull's axes in g. Seen from below (g is z down, so "below" is +z),
+  // bow to the right and starboard up on the screen, tilted a little so
+  // the view has depth.
+  Eigen::Vector3d forward = x_gM_.Rotate(Eigen::Vector3d::UnitX());
+  Eigen::Vector3d up = x_gM_.Rotate(Eigen::Vector3d::UnitZ());
+  if (bundle_ && bundle_->manifest.model_axes) {
+    forward = x_gM_.Rotate(bundle_->manifest.model_axes->forward.normalized());
+    up = x_gM_.Rotate(bundle_->manifest.model_axes->up.normalized());
+  }
+  const Eigen::Vector3d starboard = forward.cross(up).normalized();
+  const double tilt = 0.35;  // rad
+  const Eigen::Vector3d view_from = (-up * std::cos(tilt) - starboard * std::sin(tilt)).normalized();
+  const Eigen::Vector3d centre = box.center();
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  camera->SetFocalPoint(centre.data());
+  const Eigen::Vector3d position = centre + view_from;
+  camera->SetPosition(position.data());
+  camera->SetViewUp(starboard.data());
+  camera->SetViewAngle(30.0);
+  double bounds[6] = {box.min().x(), box.max().x(), box.min().y(), box.max().y(), box.min().z(), box.max().z()};
+  renderer_->ResetCamera(bounds);
+  camera->Dolly(1.3);
+  renderer_->ResetCameraClippingRange();
+}
+
+CameraState SceneViewImpl::Camera() const {
+  CameraState state;
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  camera->GetPosition(state.position.data());
+  camera->GetFocalPoint(state.focal_point.data());
+  camera->GetViewUp(state.view_up.data());
+  state.view_angle = camera->GetViewAngle();
+  return state;
+}
+
+void SceneViewImpl::SetCamera(const CameraState& state) {
+  vtkCamera* camera = renderer_->GetActiveCamera();
+  camera->SetPosition(state.position.data());
+  camera->SetFocalPoint(state.focal_point.data());
+  camera->SetViewUp(state.view_up.data());
+  camera->SetViewAngle(state.view_angle);
+  camera->OrthogonalizeViewUp();
+  renderer_->ResetCameraClippingRange();
+}
+
+void SceneViewImpl::WarmUp() {
+  if (!window_->GetReadyForRendering()) return;
+  double focal[3];
+  renderer_->GetActiveCamera()->GetFocalPoint(focal);
+  const Eigen::Vector3d c(focal[0], focal[1], focal[2]);
+  const double e = 1e-6;
+  TriangleMesh tri;
+  tri.vertices = {c, c + Eigen::Vector3d(e, 0, 0), c + Eigen::Vector3d(0, e, 0)};
+  tri.faces = {Face{0, 1, 2}};
+  tri.ComputeNormals();
+  tri.SetScalar("deviation", {0.0, 0.01, -0.01});
+  const std::vector<Eigen::Vector3d> points = {c, c + Eigen::Vector3d(e, 0, 0)};
+  LandmarkMarker marker;
+  marker.position = c;
+  marker.has_truth = true;
+  AdjustedLandmark adjusted;
+  adjusted.position = c;
+  KeyframeShapes shapes;
+  DetectedShape shape;
+  shape.vertices_g = tri.vertices;
+  shape.triangles = tri.faces;
+  shapes.shapes.push_back(shape);
+  SlabBox slab;
+  slab.centre = c;
+  slab.half_extents = Eigen::Vector3d::Constant(e);
+
+  std::map<SceneLayer, vtkSmartPointer<vtkPolyData>> saved;
+  for (SceneLayer layer : AllSceneLayers()) {
+    saved[layer] = DataOf(actors_[layer]);
+    vtkSmartPointer<vtkPolyData> stand_in;
+    switch (layer) {
+      case SceneLayer::kHull:
+        stand_in = MeshPolyData(tri);
+        break;
+      case SceneLayer::kHeatmap:
+        stand_in = HeatmapPolyData(tri);
+        break;
+      case SceneLayer::kAlphaShapes:
+        stand_in = AlphaShapesPolyData({shapes});
+        break;
+      case SceneLayer::kSlab:
+        stand_in = SlabPolyData(slab);
+        break;
+      case SceneLayer::kLandmarks:
+        stand_in = LandmarksPolyData({marker});
+        break;
+      case SceneLayer::kAdjustedLandmarks:
+        stand_in = AdjustedLandmarksPolyData({adjusted});
+        break;
+      case SceneLayer::kDvlHits:
+      case SceneLayer::kAdjustedDvlHits:
+        stand_in = PointCloudPolyData(points);
+        break;
+      case SceneLayer::kTrajectory:
+      case SceneLayer::kTrueTrajectory:
+      case SceneLayer::kAdjustedTrajectory:
+      case SceneLayer::kTruthObjects:
+      case SceneLayer::kFrusta:
+      case SceneLayer::kDetectedObjects:
+        stand_in = PolylinePolyData(points);
+        break;
+    }
+    SetData(actors_[layer], stand_in);
+    actors_[layer]->SetVisibility(true);
+  }
+  const SceneOptions options = options_;
+  for (LandmarkColouring colouring : {LandmarkColouring::kLabel, LandmarkColouring::kDeviation}) {
+    options_.colouring = colouring;
+    UpdateLandmarkColours();
+    window_->Render();
+  }
+  options_ = options;
+  for (auto& [layer, data] : saved) SetData(actors_[layer], data);
+  UpdateLandmarkColours();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::Render() {
+  renderer_->ResetCameraClippingRange();
+  window_->Render();
+}
+
+QImage SceneViewImpl::Grab() {
+  if (!window_->GetReadyForRendering()) return {};
+  Render();
+  return GrabRenderWindow(window_);
+}
+
+PickInfo SceneViewImpl::Pick(double x, double y) {
+  PickInfo info;
+  selection_->VisibilityOff();
+  if (!bundle_ || !overlays_) return info;
+  // Landmarks first (adjusted, then truth), then keyframes, then objects:
+  // the nearest point to the ray of the first layer that has one within the
+  // tolerance.
+  vtkActor* actor = nullptr;
+  vtkIdType id = -1;
+  for (SceneLayer layer : {SceneLayer::kAdjustedLandmarks, SceneLayer::kLandmarks, SceneLayer::kDetectedObjects,
+                           SceneLayer::kAdjustedTrajectory, SceneLayer::kTrajectory, SceneLayer::kTrueTrajectory,
+                           SceneLayer::kTruthObjects}) {
+    vtkActor* candidate = actors_[layer];
+    if (!candidate->GetVisibility()) continue;
+    picker_->InitializePickList();
+    picker_->AddPickList(candidate);
+    if (picker_->Pick(x, y, 0.0, renderer_) && picker_->GetActor() == candidate && picker_->GetPointId() >= 0) {
+      actor = candidate;
+      id = picker_->GetPointId();
+      break;
+    }
+  }
+  if (!actor) return info;
+  const int index = static_cast<int>(id);
+  if (actor == actors_[SceneLayer::kAdjustedLandmarks]) {
+    info = DescribeAdjustedLandmark(*adjusted_, index);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(adjusted_->landmarks[index].position);
+  } else if (actor == actors_[SceneLayer::kLandmarks]) {
+    info = DescribeLandmark(*overlays_, index);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(overlays_->landmarks[index].position);
+  } else if (actor == actors_[SceneLayer::kDetectedObjects]) {
+    vtkDataArray* owner = DataOf(actor)->GetPointData()->GetArray("object_index");
+    const int object = owner ? static_cast<int>(owner->GetTuple1(id)) : -1;
+    info = DescribeDetectedObject(*mapping_, object);
+    if (info.kind != PickKind::kNone) {
+      info.position = ShowSelection(mapping_->x_gM() * mapping_->result->objects[object].centroid_m);
+    }
+  } else if (actor == actors_[SceneLayer::kAdjustedTrajectory]) {
+    info = DescribeAdjustedKeyframe(*bundle_, *overlays_, *adjusted_, index);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(adjusted_->trajectory[index]);
+  } else if (actor == actors_[SceneLayer::kTrajectory]) {
+    info = DescribeKeyframe(*bundle_, *overlays_, index);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(overlays_->trajectory[index]);
+  } else if (actor == actors_[SceneLayer::kTrueTrajectory]) {
+    if (index < static_cast<int>(overlays_->true_nav_index.size())) {
+      info = DescribeKeyframe(*bundle_, *overlays_, overlays_->true_nav_index[index]);
+      if (info.kind != PickKind::kNone) info.position = ShowSelection(overlays_->true_trajectory[index]);
+    }
+  } else if (actor == actors_[SceneLayer::kTruthObjects]) {
+    vtkDataArray* owner = DataOf(actor)->GetPointData()->GetArray("object_index");
+    const int object = owner ? static_cast<int>(owner->GetTuple1(id)) : -1;
+    info = DescribeObject(*bundle_, *overlays_, object, x_gM_);
+    if (info.kind != PickKind::kNone) info.position = ShowSelection(x_gM_ * overlays_->objects[object].center);
+  }
+  return info;
+}
+
+Eigen::Vector3d SceneViewImpl::ShowSelection(const Eigen::Vector3d& p_g) {
+  SetData(selection_, PointCloudPolyData({p_g}));
+  selection_->VisibilityOn();
+  return p_g;
+}
+
+std::optional<std::pair<double, double>> SceneViewImpl::ToDisplay(const Eigen::Vector3d& p_g) const {
+  int* size = window_->GetSize();
+  if (!size || size[0] <= 0 || size[1] <= 0) return std::nullopt;
+  renderer_->SetWorldPoint(p_g.x(), p_g.y(), p_g.z(), 1.0);
+  renderer_->WorldToDisplay();
+  double d[3];
+  renderer_->GetDisplayPoint(d);
+  return std::make_pair(d[0], d[1]);
+}
+
+}  // namespace hull::ui

@@ -1,0 +1,103 @@
+// The VTK side of SceneView: the render window, one actor per layer, the
+// colour legend, picking and image capture. Only scene_view.cc includes this.
+#pragma once
+
+#include <vtkSmartPointer.h>
+
+#include <QImage>
+#include <map>
+#include <memory>
+#include <optional>
+#include <utility>
+
+#include "geometry/pose.h"
+#include "geometry/triangle_mesh.h"
+#include "survey/survey.h"
+#include "ui/models/cross_section.h"
+#include "ui/models/pick_details.h"
+#include "ui/session/inspection_results.h"
+#include "ui/session/scene_options.h"
+#include "ui/session/survey_overlays.h"
+
+class vtkActor;
+class vtkGenericOpenGLRenderWindow;
+class vtkLookupTable;
+class vtkPointPicker;
+class vtkPolyDataMapper;
+class vtkPolyData;
+class vtkRenderer;
+class vtkScalarBarActor;
+
+namespace hull::ui {
+
+class SceneViewImpl {
+ public:
+  SceneViewImpl();
+  ~SceneViewImpl();
+
+  vtkGenericOpenGLRenderWindow* window() const { return window_; }
+
+  void SetMesh(std::shared_ptr<const TriangleMesh> mesh);
+  void SetModelPose(const Pose& x_gM);
+  void SetSurvey(std::shared_ptr<const SurveyBundle> bundle, std::shared_ptr<const SurveyOverlays> overlays);
+  void SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted);
+  void SetSlab(const std::optional<SlabBox>& slab);
+  // The fused model, alpha shapes and detected objects (nullptr removes them).
+  void SetMapping(std::shared_ptr<const MappingRun> mapping);
+  void SetOptions(const SceneOptions& options);
+  const SceneOptions& options() const { return options_; }
+
+  void ResetCamera();
+  CameraState Camera() const;
+  void SetCamera(const CameraState& camera);
+
+  // Draws every layer once with a tiny stand-in (invisible at the focal
+  // point) so that the shader programs they need are compiled now, not at
+  // the first render of real data (a software OpenGL compiles each program
+  // in tens of milliseconds); then restores the scene.
+  void WarmUp();
+  // (Re)renders now and reads the back buffer.
+  QImage Grab();
+  void Render();
+
+  bool HasLayerData(SceneLayer layer) const;
+  long long LayerPoints(SceneLayer layer) const;
+  long long LayerCells(SceneLayer layer) const;
+  bool LegendVisible() const;
+  std::pair<double, double> LegendRange() const;
+
+  // Display coordinates: pixels from the bottom-left corner.
+  PickInfo Pick(double x, double y);
+  std::optional<std::pair<double, double>> ToDisplay(const Eigen::Vector3d& p_g) const;
+
+ private:
+  vtkActor* AddActor();
+  void UpdateVisibility();
+  void UpdateLandmarkColours();
+  void ColourLandmarks(vtkPolyDataMapper* mapper);
+  bool TruthDeviationsShown() const;
+  bool AdjustedDeviationsShown() const;
+  bool HeatmapShown() const;
+  void UpdateFrusta();
+  Eigen::Vector3d ShowSelection(const Eigen::Vector3d& p_g);  // returns p_g
+  std::pair<double, double> EffectiveRange() const;
+
+  vtkSmartPointer<vtkGenericOpenGLRenderWindow> window_;
+  vtkSmartPointer<vtkRenderer> renderer_;
+  std::map<SceneLayer, vtkSmartPointer<vtkActor>> actors_;
+  vtkSmartPointer<vtkActor> selection_;
+  vtkSmartPointer<vtkLookupTable> deviation_lut_;
+  vtkSmartPointer<vtkScalarBarActor> legend_;
+  vtkSmartPointer<vtkPointPicker> picker_;
+
+  std::shared_ptr<const TriangleMesh> mesh_;
+  std::shared_ptr<const SurveyBundle> bundle_;
+  std::shared_ptr<const SurveyOverlays> overlays_;
+  std::shared_ptr<const AdjustedOverlays> adjusted_;
+  std::shared_ptr<const MappingRun> mapping_;
+  Pose x_gM_;
+  SceneOptions options_;
+  int frusta_stride_built_ = 0;  // 0: not built for the current survey
+};
+
+}  // namespace hull::ui
