@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include "adjust/landmark_covariance.h"
 #include "adjust/cost_watch.h"
+#include "adjust/landmark_covariance.h"
 #include "geometry/mesh_index.h"
 
 namespace hull {

@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "support/test_files.h"
-#include "unit/vision/vision_scene.h"
 #include "support/test_surveys.h"
+#include "unit/vision/vision_scene.h"
 
 namespace {
 
@@ -233,6 +233,8 @@ TEST(Cli, FeaturesFromImagesThenValidate) {
   r = Cli({"features", dir.path(), "--ratio", "2", "--out", dir / "other.csv"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("ratio"), std::string::npos) << r.output;
+}
+
 // ---- issue 14: what validate accepts never crashes or hangs adjust ----------------------
 
 // The small simulated survey (tests/support) with one CSV field replaced:
