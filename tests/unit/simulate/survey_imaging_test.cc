@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
 
+#include <unistd.h>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -56,7 +57,9 @@ const std::string& Written(const std::string& preset) {
   static std::unordered_map<std::string, std::string> dirs;
   auto it = dirs.find(preset);
   if (it == dirs.end()) {
-    const std::string dir = (fs::path(::testing::TempDir()) / ("hi_imaging_" + preset)).string();
+    // One folder per process: ctest runs these tests as parallel processes.
+    const std::string dir =
+        (fs::path(::testing::TempDir()) / ("hi_imaging_" + preset + "_" + std::to_string(::getpid()))).string();
     fs::remove_all(dir);
     fs::remove_all(dir + ".gen");
     WriteSimulatedSurvey(Small(preset), dir, true);
@@ -161,7 +164,10 @@ TEST_P(SurveyImaging, TrueLandmarksAreImagedWhereTheyProject) {
     const cv::Point2d uv = OpenCvProject({p}, x_Mc, b.manifest.camera.top)[0];
     const RayHit h = camera->SurfaceAt(*scene, x_Mc, uv.x, uv.y);
     ASSERT_TRUE(h.hit);
-    EXPECT_LT((h.point - p).norm(), 1e-6) << "keyframe " << f.keyframe << " landmark " << f.landmark;
+    // The simulator calls a landmark visible when nothing lies more than 1 mm
+    // in front of it (survey_simulator.cc); near the narrow peaks of fouling
+    // clumps the ray can graze the surface within that margin.
+    EXPECT_LT((h.point - p).norm(), 1e-3) << "keyframe " << f.keyframe << " landmark " << f.landmark;
     ++n;
   }
   EXPECT_GT(n, 200);
