@@ -76,7 +76,6 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   sum.Set("decision_boundary", r.options.DecisionBoundary());
   sum.Set("covariance", CovarianceMethodName(r.covariance_method));
   if (!r.covariance_note.empty()) sum.Set("covariance_note", r.covariance_note);
-  sum.Set("covariance_seconds", r.covariance_seconds);
   root.Set("summary", sum);
   root.Set("x_gM", Vec(r.x_gM));
   root.Set("x_gM_initial", Vec(r.x_gM_initial));
@@ -99,6 +98,7 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   timing.Set("version", 1);
   timing.Set("seconds", r.seconds);
   timing.Set("solver_seconds", r.solver_seconds);
+  timing.Set("covariance_seconds", r.covariance_seconds);
   Json per = Json::Array();
   for (const auto& it : r.iterations) per.Push(Json(it.seconds));
   timing.Set("iteration_seconds", per);
@@ -192,6 +192,7 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
     JsonReader t(tdoc, tpath);
     r.seconds = t.Number("seconds");
     r.solver_seconds = t.Number("solver_seconds");
+    r.covariance_seconds = t.NumberOr("covariance_seconds", 0);
     const auto per = t.Numbers("iteration_seconds", static_cast<int>(r.iterations.size()));
     for (std::size_t i = 0; i < per.size(); ++i) r.iterations[i].seconds = per[i];
   }

@@ -84,11 +84,16 @@ class Observer : public ceres::IterationCallback {
 
   ceres::CallbackReturnType operator()(const ceres::IterationSummary& it) override {
     if (offset_ > 0 && it.iteration == 0) return ceres::SOLVER_CONTINUE;  // same state as the last record
-    stop_reason_ = watch_.Observe(offset_ + it.iteration, it.cost);
+    // A rejected step leaves the parameters where they were; Ceres reports the
+    // rejected candidate's cost (DBL_MAX when its evaluation failed), so the
+    // record and the runaway watch keep the cost of the point the solver is at.
+    const bool moved = it.iteration == 0 || it.step_is_successful || log_.empty();
+    const double cost = moved ? it.cost : log_.back().cost;
+    stop_reason_ = watch_.Observe(offset_ + it.iteration, cost);
     if (!stop_reason_.empty()) return ceres::SOLVER_ABORT;
     IterationRecord r;
     r.iteration = offset_ + it.iteration;
-    r.cost = it.cost;
+    r.cost = cost;
     r.seconds = it.cumulative_time_in_seconds;
     r.fraction_on_surface = FractionOnSurface(s_, index_, o_, &hints_);
     log_.push_back(r);

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <set>
 #include <stdexcept>
 
 namespace hull {
@@ -30,6 +32,57 @@ void RemoveStaleSiblings(const fs::path& dir) {
   }
 }
 
+// The names a run wrote at the top of its folder, kept in the folder, so the
+// next run knows which entries are results and which are the user's.
+constexpr const char* kManifest = ".hullinspect-results";
+
+std::set<std::string> ReadManifest(const fs::path& dir) {
+  std::set<std::string> names;
+  std::ifstream in(dir / kManifest);
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) names.insert(line);
+  }
+  return names;
+}
+
+void WriteManifest(const fs::path& tmp) {
+  std::ofstream out(tmp / kManifest);
+  for (const auto& e : fs::directory_iterator(tmp)) {
+    const std::string name = e.path().filename().string();
+    if (name != kManifest) out << name << '\n';
+  }
+  if (!out) throw std::runtime_error("cannot write " + (tmp / kManifest).string());
+}
+
+// `from` recreated at `to` with hard links (a copy where links fail), so the
+// previous folder stays whole until the swap.
+void LinkTree(const fs::path& from, const fs::path& to) {
+  const fs::file_status st = fs::symlink_status(from);
+  if (fs::is_symlink(st)) {
+    fs::copy_symlink(from, to);
+  } else if (fs::is_directory(st)) {
+    fs::create_directory(to);
+    for (const auto& e : fs::directory_iterator(from)) LinkTree(e.path(), to / e.path().filename());
+  } else {
+    std::error_code ec;
+    fs::create_hard_link(from, to, ec);
+    if (ec) fs::copy_file(from, to);
+  }
+}
+
+// Entries of the previous folder that are not results of a run (the user's
+// files, a survey saved there, a report) and that this run did not write:
+// carried into the new folder.
+void CarryOverUserEntries(const fs::path& dir, const fs::path& tmp) {
+  const std::set<std::string> results = ReadManifest(dir);
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (name == kManifest || results.count(name)) continue;
+    if (fs::exists(fs::symlink_status(tmp / name))) continue;
+    LinkTree(e.path(), tmp / name);
+  }
+}
+
 }  // namespace
 
 void WriteDirectoryAtomic(const std::string& dir_name, const std::function<void(const std::string& tmp)>& write) {
@@ -44,6 +97,8 @@ void WriteDirectoryAtomic(const std::string& dir_name, const std::function<void(
   fs::create_directory(tmp);
   try {
     write(tmp.string());
+    WriteManifest(tmp);
+    if (fs::is_directory(dir)) CarryOverUserEntries(dir, tmp);
   } catch (...) {
     fs::remove_all(tmp, ec);
     throw;

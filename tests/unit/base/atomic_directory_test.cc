@@ -32,7 +32,8 @@ fs::path Fresh(const std::string& name) {
 std::vector<std::pair<std::string, std::string>> Contents(const fs::path& dir) {
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_regular_file()) out.emplace_back(fs::relative(e.path(), dir).string(), ReadFileToString(e.path()));
+    if (e.is_regular_file() && e.path().filename() != ".hullinspect-results")
+      out.emplace_back(fs::relative(e.path(), dir).string(), ReadFileToString(e.path()));
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -56,6 +57,24 @@ TEST(AtomicDirectory, ReplacesTheWholeFolder) {
   int siblings = 0;
   for (const auto& e : fs::directory_iterator(root)) siblings += e.path().filename() != "results";
   EXPECT_EQ(siblings, 0);
+}
+
+TEST(AtomicDirectory, TheUsersOwnFilesInTheFolderAreKept) {
+  // A survey and a note the user saved in the results folder are not results
+  // of a run: a new run keeps them, and drops only the old run's files.
+  const fs::path root = Fresh("hi_atomic_user_files");
+  const fs::path dir = root / "results";
+  fs::create_directories(dir / "survey");
+  WriteFileAtomic((dir / "survey" / "nav.csv").string(), "user survey");
+  WriteFileAtomic((dir / "notes.txt").string(), "user note");
+  WriteDirectoryAtomic(dir.string(), [](const std::string& tmp) { WriteRun(tmp, "run 1", 3); });
+  WriteDirectoryAtomic(dir.string(), [](const std::string& tmp) { WriteRun(tmp, "run 2", 2); });
+  const auto c = Contents(dir);
+  ASSERT_EQ(c.size(), 4u);
+  EXPECT_EQ(c[0], std::make_pair(std::string("file0.txt"), std::string("run 2")));
+  EXPECT_EQ(c[1], std::make_pair(std::string("file1.txt"), std::string("run 2")));
+  EXPECT_EQ(c[2], std::make_pair(std::string("notes.txt"), std::string("user note")));
+  EXPECT_EQ(c[3], std::make_pair(std::string("survey/nav.csv"), std::string("user survey")));
 }
 
 TEST(AtomicDirectory, AFailedRunLeavesThePreviousResults) {
