@@ -3,6 +3,7 @@
 #include <ceres/ceres.h>
 #include <ceres/manifold.h>
 #include <ceres/product_manifold.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -166,12 +167,30 @@ void CheckAdjustable(const SurveyBundle& b, const Pose& x_gM_initial) {
 
 double Or(double override_value, double survey_value) { return override_value > 0 ? override_value : survey_value; }
 
+// SuiteSparse (CHOLMOD's supernodal factorisation, SPQR) threads through
+// OpenMP, whose team sums make the last digits depend on the schedule: the
+// solve and the covariances use the adjustment's own thread count, so one
+// thread gives byte-identical results. The previous count is restored.
+class OpenMpThreads {
+ public:
+  explicit OpenMpThreads(int n) : saved_(omp_get_max_threads()) {
+    if (n > 0) omp_set_num_threads(n);
+  }
+  ~OpenMpThreads() { omp_set_num_threads(saved_); }
+  OpenMpThreads(const OpenMpThreads&) = delete;
+  OpenMpThreads& operator=(const OpenMpThreads&) = delete;
+
+ private:
+  int saved_;
+};
+
 }  // namespace
 
 AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, const Pose& x_gM_initial,
                                const AdjustmentOptions& o, Progress& progress, const AdjustmentResult* warm) {
   o.Check();
   const auto t0 = Clock::now();
+  const OpenMpThreads omp_threads(o.num_threads);
   if (b.nav.empty()) throw InputError({b.directory, 0, 0, "nav.csv"}, "the survey has no keyframes to adjust");
   CheckAdjustable(b, x_gM_initial);
   if (mesh.empty()) throw InputError({"mesh", 0, 0, ""}, "the prior mesh has no faces");
