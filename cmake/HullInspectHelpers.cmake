@@ -65,7 +65,7 @@ endfunction()
 # -L core and left out by -LE integration (the sanitizer run's selection).
 # A GoogleTest executable registered with CTest (one CTest entry per test case).
 function(hi_add_test name)
-  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "WHOLE" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gmock GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
@@ -78,6 +78,14 @@ function(hi_add_test name)
   endif()
   if(NOT ARG_LABELS)
     set(ARG_LABELS core)  # core tests also run in the sanitizer build
+  endif()
+  if(ARG_WHOLE)
+    # One ctest for the whole program: its tests share expensive fixtures
+    # (whole simulated adjustments) in one process instead of recomputing
+    # them in a process per test.
+    add_test(NAME ${name} COMMAND ${name})
+    set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+    return()
   endif()
   include(GoogleTest)
   gtest_discover_tests(${name}
