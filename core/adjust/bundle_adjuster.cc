@@ -168,9 +168,9 @@ void CheckAdjustable(const SurveyBundle& b, const Pose& x_gM_initial) {
 double Or(double override_value, double survey_value) { return override_value > 0 ? override_value : survey_value; }
 
 // SuiteSparse (CHOLMOD's supernodal factorisation, SPQR) threads through
-// OpenMP, whose team sums make the last digits depend on the schedule: the
-// solve and the covariances use the adjustment's own thread count, so one
-// thread gives byte-identical results. The previous count is restored.
+// OpenMP: the solve and the covariances use the adjustment's own thread
+// count (--threads), whose team sums otherwise vary the last digits between
+// runs. The previous count is restored.
 class OpenMpThreads {
  public:
   explicit OpenMpThreads(int n) : saved_(omp_get_max_threads()) {
