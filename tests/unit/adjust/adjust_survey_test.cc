@@ -5,6 +5,8 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "adjust/bundle_adjuster.h"
 #include "adjust/evaluation.h"
@@ -13,9 +15,23 @@
 namespace hull {
 namespace {
 
+struct Update {
+  double fraction;
+  std::string message;
+};
+
+// Keeps every progress update the adjustment sends.
+class RecordingProgress final : public Progress {
+ public:
+  void Update(double fraction, const std::string& message) override { updates.push_back({fraction, message}); }
+  bool Cancelled() const override { return false; }
+  std::vector<hull::Update> updates;
+};
+
 struct ModelRun {
   AdjustmentResult result;
   AdjustmentEvaluation eval;
+  std::vector<Update> updates;
 };
 
 struct Case {
@@ -35,7 +51,9 @@ const Case& Get(const std::string& preset) {
     AdjustmentOptions o;
     o.model = m;
     ModelRun r;
-    r.result = RunAdjustment(c.survey.bundle, c.survey.cad, guess, o, p);
+    RecordingProgress recorder;
+    r.result = RunAdjustment(c.survey.bundle, c.survey.cad, guess, o, recorder);
+    r.updates = std::move(recorder.updates);
     r.eval = EvaluateAdjustment(c.survey.bundle, c.survey.cad, r.result);
     std::printf("[%s %s] %.1f s, %zu iterations\n%s", preset.c_str(), SurfaceModelName(m), r.result.seconds,
                 r.result.iterations.size(), r.eval.ToString().c_str());
@@ -48,6 +66,49 @@ class AdjustSurvey : public ::testing::TestWithParam<std::string> {
  protected:
   const ModelRun& R(SurfaceModel m) { return Get(GetParam()).runs.at(m); }
 };
+
+// What a user watching `run` sees (issue 13, part 6): the bar never goes back
+// or jumps while the solver iterates, one update per recorded iteration, and
+// the closing message counts the iterations adjustment.json records.
+TEST_P(AdjustSurvey, ProgressMovesSteadilyAndCountsWhatTheResultsRecord) {
+  for (SurfaceModel m : {SurfaceModel::kNaive, SurfaceModel::kMaxMixture}) {
+    const ModelRun& run = R(m);
+    ASSERT_FALSE(run.updates.empty());
+    ASSERT_FALSE(run.result.iterations.empty());
+    std::size_t iteration_updates = 0;
+    for (std::size_t i = 0; i < run.updates.size(); ++i) {
+      const Update& u = run.updates[i];
+      EXPECT_GE(u.fraction, 0.0);
+      EXPECT_LE(u.fraction, 1.0);
+      if (i > 0) {
+        EXPECT_GE(u.fraction, run.updates[i - 1].fraction) << "went back at: " << u.message;
+      }
+      if (u.message.find(": iteration ") == std::string::npos) continue;
+      ++iteration_updates;
+      if (i > 0) {
+        EXPECT_LE(u.fraction - run.updates[i - 1].fraction, 0.03) << "jumped at: " << u.message;
+      }
+    }
+    EXPECT_EQ(iteration_updates, run.result.iterations.size());
+    EXPECT_DOUBLE_EQ(run.updates.back().fraction, 1.0);
+    const std::string done =
+        "adjustment done: " + std::to_string(run.result.iterations.back().iteration) + " iterations";
+    EXPECT_NE(run.updates.back().message.find(done), std::string::npos) << run.updates.back().message;
+  }
+}
+
+TEST(SolveFraction, RisesByAtMostThreePercentAndStaysBelowOne) {
+  double last = SolveFraction(0, 100);
+  EXPECT_EQ(last, 0.0);
+  for (int n = 1; n <= 1000; ++n) {
+    const double f = SolveFraction(n, 100);
+    EXPECT_GT(f, last);
+    EXPECT_LE(f - last, 0.03 + 1e-12);
+    EXPECT_LT(f, 1.0);
+    last = f;
+  }
+  EXPECT_NEAR(SolveFraction(100, 100), 0.95, 0.001);
+}
 
 TEST_P(AdjustSurvey, MaxMixtureKeepsTheCylinderHeight) {
   const ObjectDeviation* cyl = R(SurfaceModel::kMaxMixture).eval.Object("cyl-1");
