@@ -15,6 +15,15 @@ void CappedRunOptions::Check() const {
   if (num_threads < 1) throw OptionError("num_threads", "must be >= 1");
 }
 
+CappedRunOptions CappedRunOptions::PerFuzzInput() {
+  CappedRunOptions caps;
+  caps.max_iterations = 5;
+  caps.max_seconds = 2;
+  caps.rejection_rounds = 1;
+  caps.num_threads = 1;
+  return caps;
+}
+
 const char* CappedRunStageName(CappedRunOutcome::Stage s) {
   switch (s) {
     case CappedRunOutcome::Stage::kValidate:

@@ -21,6 +21,11 @@ struct CappedRunOptions {
   int num_threads = 1;       // one thread: reproducible, and fair to a fuzzer's parallel jobs
   bool align = true;         // GICP of the DVL returns first (else the bundle's model_pose_guess)
   void Check() const;        // throws OptionError naming the field
+
+  // The caps of one fuzz-corpus input (the corpus replay through the whole
+  // path, tests/unit/pipeline/robust_input_test.cc): 5 iterations, 2 s per
+  // solve, one rejection round, one thread.
+  static CappedRunOptions PerFuzzInput();
 };
 
 struct CappedRunOutcome {

@@ -1,4 +1,4 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Makes the fuzzing base folders and seed corpora (tests/fuzz/base, tests/fuzz/corpus).
 
 Usage: make_seeds.py SURVEY_BUNDLE SONAR_SEQUENCE
@@ -44,7 +44,11 @@ def survey(src):
     base = os.path.join(HERE, 'base', 'survey')
     shutil.rmtree(base, ignore_errors=True)
     man = json.load(open(os.path.join(src, 'survey.json')))
-    man.pop('model_hint', None)  # the mesh is fuzzed on its own
+    # The prior mesh, cut to the stretch the kept keyframes see, so the
+    # harnesses can run the whole validate -> align -> adjust path
+    # (issue 14) at a few milliseconds per input; the mesh readers are
+    # fuzzed on their own.
+    man['model_hint'] = 'hull.ply'
     files = {'survey.json': json.dumps(man, indent=2) + '\n'}
     kf = lambda r: int(r[0]) < KEYFRAMES
     files['nav.csv'] = keep(lines(os.path.join(src, 'nav.csv')), kf)
@@ -61,7 +65,62 @@ def survey(src):
     for name, rows in files.items():
         text = rows if isinstance(rows, str) else '\n'.join(rows) + '\n'
         write(os.path.join(base, name), text)
+    x_gM = json.load(open(os.path.join(src, 'truth', 'model_pose.json')))['x_gM']
+    marks = [list(map(float, r.split(',')[1:4])) for r in files['truth/landmarks.csv'][1:]]
+    write(os.path.join(base, 'hull.ply'), crop_ply(os.path.join(src, man.get('model_hint', 'hull.ply')), x_gM, marks))
     return base
+
+
+def rotation(roll, pitch, yaw):
+    """R = Rz(yaw) Ry(pitch) Rx(roll), as core/geometry/pose.h."""
+    import numpy as np
+    cr, sr, cp, sp, cy, sy = (np.cos(roll), np.sin(roll), np.cos(pitch), np.sin(pitch), np.cos(yaw), np.sin(yaw))
+    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
+    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
+    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
+    return rz @ ry @ rx
+
+
+def crop_ply(path, x_gM, points_g, margin=2.0):
+    """The faces of a binary little-endian PLY (as HullInspect writes it: float
+    or double x y z, then a uchar/int face list) whose vertices all lie within
+    `margin` of the bounding box of points_g (global frame), as binary PLY."""
+    import numpy as np
+    data = open(path, 'rb').read()
+    end = data.index(b'end_header\n') + len(b'end_header\n')
+    header = data[:end].decode().splitlines()
+    nv = nf = 0
+    vprops = []
+    for line in header:
+        t = line.split()
+        if t[:2] == ['element', 'vertex']:
+            nv = int(t[2])
+        elif t[:2] == ['element', 'face']:
+            nf = int(t[2])
+        elif t[0] == 'property' and t[1] != 'list' and nf == 0:
+            vprops.append((t[2], {'float': '<f4', 'double': '<f8'}[t[1]]))
+    assert 'binary_little_endian' in header[1], path + ': binary little-endian PLY expected'
+    vt = np.dtype(vprops)
+    verts = np.frombuffer(data, vt, nv, end)
+    xyz = np.stack([verts['x'], verts['y'], verts['z']], 1).astype(float)
+    faces = np.frombuffer(data, np.dtype([('n', 'u1'), ('i', '<i4', 3)]), nf, end + nv * vt.itemsize)['i']
+    g = xyz @ rotation(*x_gM[3:]).T + np.array(x_gM[:3])
+    lo = np.min(points_g, 0) - margin
+    hi = np.max(points_g, 0) + margin
+    inside = np.all((g >= lo) & (g <= hi), 1)
+    faces = faces[np.all(inside[faces], 1)]
+    used = np.unique(faces)
+    remap = np.full(nv, -1)
+    remap[used] = np.arange(len(used))
+    out = ('ply\nformat binary_little_endian 1.0\ncomment the fuzzing base: %s cut to the kept keyframes\n'
+           'element vertex %d\nproperty float x\nproperty float y\nproperty float z\n'
+           'element face %d\nproperty list uchar int vertex_indices\nend_header\n'
+           % (os.path.basename(path), len(used), len(faces))).encode()
+    out += xyz[used].astype('<f4').tobytes()
+    rows = np.zeros(len(faces), np.dtype([('n', 'u1'), ('i', '<i4', 3)]))
+    rows['n'] = 3
+    rows['i'] = remap[faces]
+    return out + rows.tobytes()
 
 
 def sonar(src):

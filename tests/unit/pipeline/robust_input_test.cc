@@ -327,5 +327,51 @@ TEST(CappedRun, EndsSaneAndAbsurdBundlesQuickly) {
   EXPECT_THROW(RunCappedValidateAdjust(tmp / "ok", o), OptionError);
 }
 
+// The survey harnesses' corpus (tests/fuzz/corpus/survey_*: seeds and what
+// fuzzing found) through the whole path the harnesses run, in every build:
+// each input replaces its file in a copy of the fuzzing base bundle (which
+// validates and adjusts as it is); the reader may only refuse, and the capped
+// run ends at a stage with a refusal or a finished adjustment, each within
+// its cap.
+TEST(CappedRun, FuzzCorpusRunsTheWholePathWithinItsCaps) {
+  namespace fs = std::filesystem;
+  const fs::path fuzz = fs::path(HI_SOURCE_DIR) / "tests/fuzz";
+  const std::vector<std::pair<std::string, std::string>> harnesses = {
+      {"survey_json", "survey.json"},     {"survey_nav", "nav.csv"},           {"survey_odometry", "odometry.csv"},
+      {"survey_dvl", "dvl.csv"},          {"survey_features", "features.csv"}, {"survey_landmarks", "landmarks.csv"},
+      {"survey_truth", "truth/poses.csv"}};
+  const CappedRunOptions caps = CappedRunOptions::PerFuzzInput();
+  const ScratchDir tmp("robust_corpus");
+  // The base itself goes the whole way.
+  fs::copy(fuzz / "base/survey", tmp / "base", fs::copy_options::recursive);
+  const CappedRunOutcome base = RunCappedValidateAdjust(tmp / "base", caps);
+  ASSERT_EQ(base.stage, CappedRunOutcome::Stage::kDone) << base.message;
+  int inputs = 0, done = 0;
+  for (const auto& [harness, file] : harnesses) {
+    for (const auto& entry : fs::directory_iterator(fuzz / "corpus" / harness)) {
+      const fs::path dir = tmp / "case";
+      fs::remove_all(dir);
+      fs::copy(fuzz / "base/survey", dir, fs::copy_options::recursive);
+      fs::copy_file(entry.path(), dir / file, fs::copy_options::overwrite_existing);
+      try {
+        ReadSurveyBundle(dir.string());
+      } catch (const InputError&) {
+      }
+      const CappedRunOutcome r = RunCappedValidateAdjust(dir.string(), caps);
+      SCOPED_TRACE(harness + "/" + entry.path().filename().string());
+      EXPECT_TRUE(r.refused || r.stage == CappedRunOutcome::Stage::kDone);
+      EXPECT_LE(r.iterations, caps.max_iterations * (caps.rejection_rounds + 1));
+      // Two solves at most, each capped at max_seconds; alignment and loading
+      // of a 69-triangle mesh add little.
+      EXPECT_LT(r.seconds, 3 * caps.max_seconds);
+      ++inputs;
+      done += r.stage == CappedRunOutcome::Stage::kDone;
+    }
+  }
+  std::printf("fuzz corpus: %d inputs, %d adjusted to the end, the rest refused\n", inputs, done);
+  EXPECT_GE(inputs, 21);
+  EXPECT_GE(done, 7);  // at least the full seeds go the whole way
+}
+
 }  // namespace
 }  // namespace hull
