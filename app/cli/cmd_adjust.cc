@@ -42,9 +42,8 @@ The initial model pose (and the prior of eq. 8) is the GICP alignment of the
 DVL returns to the mesh (see 'align').
 
 The same input and options write the same files (wall times go to
-timing.json), with numbers equal to about 1e-14 relative with --threads 1
-(not yet byte for byte), and to far below the survey's noise with more
-threads (Ceres sums in thread order). The bundle is
+timing.json): byte for byte with --threads 1, and to far below the survey's
+noise with more threads (Ceres sums in thread order). The bundle is
 validated first (docs/validation.md); an adjustment whose cost runs away
 stops with exit 3, naming the likely input. DIR is checked before any work
 (exit 2 when it cannot be written).

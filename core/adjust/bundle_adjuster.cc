@@ -6,11 +6,14 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <memory_resource>
 #include <set>
 #include <thread>
 #include <unordered_map>
@@ -35,20 +38,52 @@ using adjust::kPoseSize;
 using adjust::PoseToBlock;
 using Clock = std::chrono::steady_clock;
 
-struct State {
-  std::vector<std::array<double, kPoseSize>> pose;
-  std::vector<double> servo;
-  std::array<double, kPoseSize> extrinsic{};
+// The states, every parameter block in one buffer allocated in a fixed order
+// (extrinsic, model, poses, servo angles, landmarks). Ceres orders the
+// covariance's columns by the blocks' addresses
+// (CovarianceImpl::ComputeCovarianceSparsity sorts them by pointer): blocks
+// in separately allocated vectors were ordered by wherever malloc put them,
+// which varies from run to run with other threads' allocations (Embree's
+// TBB workers), and the covariances' last digits varied with it (the other
+// cause: landmark_covariance.cc's aligned SuiteSparse allocations).
+class State {
+ public:
+  // max_landmarks bounds the landmarks pushed (the buffer never grows).
+  State(std::size_t keyframes, std::size_t max_landmarks)
+      : buffer_(Bytes(keyframes, max_landmarks)),
+        arena_(buffer_.data(), buffer_.size(), std::pmr::null_memory_resource()),
+        extrinsic(kPoseSize, 0.0, &arena_),
+        model(kPoseSize, 0.0, &arena_),
+        pose(keyframes, std::array<double, kPoseSize>{}, &arena_),
+        servo(keyframes, 0.0, &arena_),
+        landmark(&arena_) {
+    landmark.reserve(max_landmarks);
+  }
+  State(const State&) = delete;
+  State& operator=(const State&) = delete;
+
+ private:
+  static std::size_t Bytes(std::size_t keyframes, std::size_t max_landmarks) {
+    constexpr std::size_t kSlack = 64;  // alignment padding per allocation
+    return sizeof(double) * (2 * kPoseSize + keyframes * (kPoseSize + 1) + 3 * max_landmarks) + 5 * kSlack;
+  }
+  std::vector<std::byte> buffer_;
+  std::pmr::monotonic_buffer_resource arena_;
+
+ public:
+  std::pmr::vector<double> extrinsic;
   // The model pose is optimised as x_gC, a frame with M's orientation at the
   // centroid of the surveyed region: x_gM = x_gC (+) x_CM. Parameterised at
   // M's own origin (often the stern, ~100 m away), a rotation of the prior's
   // size would swing the surveyed region across the hull, and a flat hull
   // patch would leave that swing unobserved; about the region, yaw and
   // translation mean what they say. The prior (eq. 8) applies to x_gC.
-  std::array<double, kPoseSize> model{};
+  std::pmr::vector<double> model;
+  std::pmr::vector<std::array<double, kPoseSize>> pose;
+  std::pmr::vector<double> servo;
+  std::pmr::vector<std::array<double, 3>> landmark;
   Pose model_offset;  // x_CM (a pure translation)
   Pose ModelPose() const { return BlockToPose(model.data()) * model_offset; }
-  std::vector<std::array<double, 3>> landmark;
   std::vector<std::int64_t> landmark_id;
   std::vector<int> landmark_views;
 };
@@ -229,9 +264,8 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   const int K = static_cast<int>(b.nav.size());
 
   // ---- initial state ------------------------------------------------------------
-  State s;
-  s.pose.resize(static_cast<std::size_t>(K));
-  s.servo.resize(static_cast<std::size_t>(K));
+  // Landmarks: at most one per observation.
+  State s(static_cast<std::size_t>(K), b.features.size());
   std::unordered_map<std::int64_t, int> warm_kf;
   if (warm) {
     for (std::size_t i = 0; i < warm->keyframes.size(); ++i) warm_kf[warm->keyframes[i]] = static_cast<int>(i);
@@ -508,13 +542,13 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   };
   {
     // The initial alignment: initial poses and servo angles against x_gM_initial.
-    const auto saved = s.model;
+    const std::vector<double> saved(s.model.begin(), s.model.end());
     PoseToBlock(x_gM_initial * s.model_offset.Inverse(), s.model.data());
     std::vector<std::array<double, kPoseSize>> saved_pose;
     std::vector<double> saved_servo;
     if (warm) {
-      saved_pose = s.pose;
-      saved_servo = s.servo;
+      saved_pose.assign(s.pose.begin(), s.pose.end());
+      saved_servo.assign(s.servo.begin(), s.servo.end());
       for (int i = 0; i < K; ++i) {
         PoseToBlock(Pose::FromVector(b.nav[static_cast<std::size_t>(i)].x_gv),
                     s.pose[static_cast<std::size_t>(i)].data());
@@ -522,10 +556,10 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
       }
     }
     dvl_residuals(true);
-    s.model = saved;
+    std::copy(saved.begin(), saved.end(), s.model.begin());
     if (warm) {
-      s.pose = saved_pose;
-      s.servo = saved_servo;
+      std::copy(saved_pose.begin(), saved_pose.end(), s.pose.begin());
+      std::copy(saved_servo.begin(), saved_servo.end(), s.servo.begin());
     }
   }
 

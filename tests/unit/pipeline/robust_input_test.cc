@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <regex>
+#include <vector>
 
 #include "adjust/bundle_adjuster.h"
 #include "adjust/cost_watch.h"
@@ -249,42 +249,30 @@ std::vector<double> Numbers(const std::string& text) {
   return out;
 }
 
-// Every number of a text, and the text with each number replaced by '#'.
-const std::regex& NumberPattern() {
-  static const std::regex re(R"([-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?)");
-  return re;
-}
-std::vector<double> AllNumbers(const std::string& text) {
-  std::vector<double> out;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), NumberPattern()); it != std::sregex_iterator(); ++it) {
-    out.push_back(std::strtod(it->str().c_str(), nullptr));
-  }
-  return out;
-}
-std::string Skeleton(const std::string& text) { return std::regex_replace(text, NumberPattern(), "#"); }
-
 TEST(RobustAdjust, TheSameAdjustmentTwiceWritesIdenticalFiles) {
   const SimulatedSurvey& sim = test::SmallSurvey();
   const ScratchDir tmp("robust_determinism");
   NullProgress p;
   const Pose guess = Pose::FromVector(*sim.bundle.manifest.model_pose_guess);
   const char* files[] = {"adjustment.json", "poses.csv", "landmarks.csv", "dvl_residuals.csv"};
-  // One thread: the same files, field for field, and every number equal to
-  // 1e-9 relative. Not yet byte for byte: the last digits (about 1e-14
-  // relative) still vary between runs in a few of five (the OpenMP team of
-  // SuiteSparse is held to the thread count, and is not the only cause);
-  // see docs/results-format.md.
+  // One thread: byte-identical files, run after run, whatever the heap holds
+  // (the third run starts with other blocks allocated, so malloc places the
+  // solver's and SuiteSparse's memory elsewhere: the covariances' column
+  // order and the dense kernels' alignment no longer follow it).
   AdjustmentOptions o = QuickOptions();
   o.num_threads = 1;
   for (const char* dir : {"a", "b"}) WriteAdjustmentResult(RunAdjustment(sim.bundle, sim.cad, guess, o, p), tmp / dir);
+  {
+    std::vector<std::vector<char>> clutter;
+    for (std::size_t n = 24; n < 3000000; n = n * 3 + 40) clutter.emplace_back(n, 'x');
+    WriteAdjustmentResult(RunAdjustment(sim.bundle, sim.cad, guess, o, p), tmp / "e");
+  }
   for (const char* f : files) {
-    const std::string a = ReadText(tmp / (std::string("a/") + f)), b = ReadText(tmp / (std::string("b/") + f));
+    const std::string a = ReadText(tmp / (std::string("a/") + f));
     EXPECT_FALSE(a.empty()) << f;
-    EXPECT_EQ(Skeleton(a), Skeleton(b)) << f << ": fields differ between two runs of the same adjustment";
-    const std::vector<double> na = AllNumbers(a), nb = AllNumbers(b);
-    ASSERT_EQ(na.size(), nb.size()) << f;
-    for (std::size_t i = 0; i < na.size(); ++i)
-      EXPECT_NEAR(na[i], nb[i], 1e-9 * (1 + std::abs(na[i]))) << f << " " << i;
+    for (const char* other : {"b/", "e/"}) {
+      EXPECT_TRUE(a == ReadText(tmp / (std::string(other) + f))) << f << " differs between runs (" << other << ")";
+    }
   }
   // The wall times are kept apart, and read back.
   const AdjustmentResult back = ReadAdjustmentResult(tmp / "a");
