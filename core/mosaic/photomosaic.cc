@@ -138,7 +138,10 @@ Eigen::Vector3d Barycentric(const std::array<Eigen::Vector2d, 3>& t, const Eigen
   }
   *inside = b.minCoeff() >= -1e-9;
   if (*inside) return b;
-  // Closest point on the three edges.
+  // Closest point on the three edges; within kExtrapolate texels of the
+  // triangle the plane is extended instead (the border texels a bilinear
+  // lookup inside the triangle reaches continue the texture).
+  constexpr double kExtrapolate = 1.5;
   double best = 1e300;
   Eigen::Vector3d out = b;
   for (int i = 0; i < 3; ++i) {
@@ -154,7 +157,7 @@ Eigen::Vector3d Barycentric(const std::array<Eigen::Vector2d, 3>& t, const Eigen
       out[(i + 1) % 3] = s;
     }
   }
-  return out;
+  return best <= kExtrapolate * kExtrapolate ? b : out;
 }
 
 // Sparse per-vertex view weights.
@@ -190,6 +193,72 @@ ViewWeights Strongest(std::map<int, double>& acc) {
   return out;
 }
 
+// Splits every edge longer than max_edge of the faces that `near` accepts,
+// conformingly: each round bisects the marked edges, a face with one, two
+// or three marked edges becomes two, three or four triangles.
+void SplitLongEdges(TriangleMesh& m, double max_edge, const std::function<bool(int)>& near) {
+  std::vector<char> active(m.num_faces(), 0);
+  for (std::size_t f = 0; f < m.num_faces(); ++f) active[f] = near(static_cast<int>(f)) ? 1 : 0;
+  const double l2 = max_edge * max_edge;
+  for (int round = 0; round < 30; ++round) {
+    std::map<std::pair<int, int>, int> mid;  // marked edge -> new vertex
+    for (std::size_t f = 0; f < m.num_faces(); ++f) {
+      if (!active[f]) continue;
+      for (int i = 0; i < 3; ++i) {
+        const int a = m.faces[f][i], b = m.faces[f][(i + 1) % 3];
+        if ((m.vertices[static_cast<std::size_t>(a)] - m.vertices[static_cast<std::size_t>(b)]).squaredNorm() <= l2) {
+          continue;
+        }
+        const auto key = std::minmax(a, b);
+        if (mid.count(key)) continue;
+        mid[key] = static_cast<int>(m.vertices.size());
+        m.vertices.push_back(0.5 * (m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)]));
+      }
+    }
+    if (mid.empty()) break;
+    std::vector<Face> faces;
+    std::vector<char> next_active;
+    faces.reserve(m.faces.size() + 3 * mid.size());
+    for (std::size_t f = 0; f < m.num_faces(); ++f) {
+      const Face F = m.faces[f];
+      int e[3];
+      int marked = 0;
+      for (int i = 0; i < 3; ++i) {
+        const auto it = mid.find(std::minmax(F[i], F[(i + 1) % 3]));
+        e[i] = it == mid.end() ? -1 : it->second;
+        marked += e[i] >= 0 ? 1 : 0;
+      }
+      auto add = [&](int a, int b, int c) {
+        faces.push_back({a, b, c});
+        next_active.push_back(active[f]);
+      };
+      if (marked == 0) {
+        add(F[0], F[1], F[2]);
+      } else if (marked == 3) {
+        add(F[0], e[0], e[2]);
+        add(e[0], F[1], e[1]);
+        add(e[2], e[1], F[2]);
+        add(e[0], e[1], e[2]);
+      } else if (marked == 1) {
+        const int i = e[0] >= 0 ? 0 : e[1] >= 0 ? 1 : 2;  // edge F[i] -> F[i+1]
+        add(F[i], e[i], F[(i + 2) % 3]);
+        add(e[i], F[(i + 1) % 3], F[(i + 2) % 3]);
+      } else {
+        const int i = e[0] < 0 ? 0 : e[1] < 0 ? 1 : 2;  // the unmarked edge F[i] -> F[i+1]
+        const int a = F[i], b = F[(i + 1) % 3], c = F[(i + 2) % 3];
+        const int mbc = e[(i + 1) % 3], mca = e[(i + 2) % 3];
+        add(mca, mbc, c);
+        add(a, b, mbc);
+        add(a, mbc, mca);
+      }
+    }
+    m.faces.swap(faces);
+    active.swap(next_active);
+  }
+  m.vertex_scalars.clear();  // per-vertex values (deviation, fusions) do not survive the split
+  m.ComputeNormals();
+}
+
 }  // namespace
 
 const char* MosaicNormalisationName(MosaicNormalisation n) {
@@ -209,6 +278,7 @@ void MosaicOptions::Check() const {
     if (!ok) throw OptionError(field, why);
   };
   require(texel_size > 0 && texel_size < 1, "texel_size", "must be in (0, 1) m");
+  require(max_edge > 0, "max_edge", "must be positive");
   require(max_range > 0, "max_range", "must be positive");
   require(max_incidence_deg > 0 && max_incidence_deg < 90, "max_incidence_deg", "must be in (0, 90) degrees");
   require(image_margin >= 0, "image_margin", "must be >= 0");
@@ -244,8 +314,6 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
   R.model = in.model;
   TriangleMesh& model = R.model;
   model.ComputeNormals();
-  const std::size_t nf = model.num_faces(), nv = model.num_vertices();
-  const MeshIndex index(model);
 
   // ---- Views.
   const bool stereo = in.manifest.camera.stereo();
@@ -266,6 +334,20 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
   }
   const int nviews = static_cast<int>(cameras.size());
   if (nviews == 0) throw std::invalid_argument("the survey has no images to texture the model with");
+  // Faces within max_range of the cameras' bounding box get their long edges split.
+  {
+    Eigen::AlignedBox3d box;
+    for (const MosaicCamera& c : cameras) box.extend(c.centre());
+    SplitLongEdges(model, options.max_edge, [&](int f) {
+      const Face& F = model.faces[static_cast<std::size_t>(f)];
+      const Eigen::Vector3d g = model.FaceCentroid(f);
+      double r = 0;
+      for (int i = 0; i < 3; ++i) r = std::max(r, (model.vertices[static_cast<std::size_t>(F[i])] - g).norm());
+      return box.exteriorDistance(g) <= options.max_range + r;
+    });
+  }
+  const std::size_t nf = model.num_faces(), nv = model.num_vertices();
+  const MeshIndex index(model);
   const int W = in.manifest.camera.width, H = in.manifest.camera.height;
   const bool use_model = options.normalisation != MosaicNormalisation::kNone;
   std::unique_ptr<UnderwaterCamera> photo_top, photo_bottom;
@@ -506,7 +588,7 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
   for (std::size_t f = 0; f < nf; ++f) {
     if (R.faces[f].view < 0) continue;
     std::vector<int> vs = {R.faces[f].view};
-    for (int i = 0; i < 3; ++i) {
+    for (int i = 0; i < 3 && options.feather_rings > 0; ++i) {
       for (int v : vw[static_cast<std::size_t>(model.faces[f][i])].view) {
         if (v < 0) continue;
         const bool visible =

@@ -6,6 +6,9 @@
 //    projecting through the bundle adjustment's own reprojection code
 //    (adjust/factors/reprojection_factor.h), so a texel lands where the
 //    adjustment says the point is seen.
+//    Faces within max_range of a camera with edges longer than max_edge
+//    are split first (conforming edge bisection), so that one image can hold
+//    a whole face; the mosaic's model is the split one.
 // 2. Candidates per face: all three corners inside the image, the face
 //    turned toward the camera within max_incidence_deg, within max_range, and
 //    not occluded: Embree rays from four points of the face to the camera
@@ -59,6 +62,7 @@ const char* MosaicNormalisationName(MosaicNormalisation n);
 
 struct MosaicOptions {
   double texel_size = 0.004;      // m per atlas texel
+  double max_edge = 0.2;          // m: longer edges near the cameras are split (a face must fit in one image)
   double max_range = 5.0;         // m: farther views are no candidates
   double max_incidence_deg = 75;  // views seeing a face more obliquely are no candidates
   double image_margin = 2;        // px: corners must lie this far inside the image
@@ -127,7 +131,7 @@ struct MosaicSummary {
 struct MosaicResult {
   MosaicOptions options;
   MosaicNormalisation normalisation = MosaicNormalisation::kModelAndGains;
-  TriangleMesh model;
+  TriangleMesh model;  // the input model with the faces near the cameras split to max_edge
   std::vector<MosaicView> views;
   std::vector<MosaicFace> faces;
   // Per face corner: position in atlas pixels (texel (i, j) covers

@@ -219,7 +219,7 @@ TEST(Mosaic, OccludedViewIsNeverChosen) {
   MosaicOptions o = RawOptions();
   NullProgress progress;
   const MosaicResult r = BuildMosaic(PlaneInput({a, b}, {image_a, image_b}, model), o, progress);
-  const Eigen::Vector3d oa = Pose::FromVector(a).translation(), ob = Pose::FromVector(b).translation();
+  const Eigen::Vector3d oa = Pose::FromVector(a).translation();
   int hidden_from_a = 0, hidden_from_a_taken_from_b = 0, seen_by_a = 0;
   for (std::size_t f = 0; f < plane_faces; ++f) {
     const MosaicFace& F = r.faces[f];
@@ -298,7 +298,7 @@ MosaicInput RenderedInput(const RenderedSurvey& s, std::size_t max_keyframes) {
 
 TEST(Mosaic, ColourErrorOnARenderedSurveyIsSmallAndNeedsTheNormalisation) {
   const RenderedSurvey& s = Rendered();
-  const MosaicInput in = RenderedInput(s, 24);
+  const MosaicInput in = RenderedInput(s, 16);
   MosaicOptions o;
   o.texel_size = 0.01;
   o.num_threads = 2;
@@ -310,10 +310,15 @@ TEST(Mosaic, ColourErrorOnARenderedSurveyIsSmallAndNeedsTheNormalisation) {
       "%.2f s\n",
       r.summary.faces_scored, r.summary.error_median, r.summary.error_p95, r.summary.mean_error_median,
       r.summary.mean_error_p95, r.summary.gain_min, r.summary.gain_max, r.summary.seconds.total);
-  // Bounds measured on this survey (see docs/mosaic.md, "Colour error").
-  EXPECT_LT(r.summary.mean_error_median, 0.02);
-  EXPECT_LT(r.summary.mean_error_p95, 0.06);
-  EXPECT_LT(r.summary.error_median, 0.05);
+  // Measured on this survey (docs/mosaic.md, "Colour error"): face means
+  // median 0.008, p95 0.05; texels median 0.017 (albedo units; the hull's
+  // paint is 0.2..0.4). What remains: sensor noise, facet normals against
+  // the renderer's smoothed shading normals, strobe shadows beside objects
+  // (not modelled). Bounds with a margin of about 1.5..2.
+  EXPECT_LT(r.summary.mean_error_median, 0.015);
+  EXPECT_LT(r.summary.mean_error_p95, 0.08);
+  EXPECT_LT(r.summary.error_median, 0.03);
+  EXPECT_LT(r.summary.error_p95, 0.09);
 
   // Raw pixels (share of full scale) against the albedo: the strobe, water
   // and vignetting left in are far larger errors.
@@ -345,7 +350,7 @@ TEST(Mosaic, WritesTheFolderTheGltfExporterReads) {
   EXPECT_EQ(cv::norm(atlas, r.atlas, cv::NORM_INF), 0.0);
   const std::string ply = ReadFileToString(dir + "/" + kMosaicPly);
   EXPECT_NE(ply.find("property uchar red"), std::string::npos);
-  EXPECT_NE(ply.find("element face 32"), std::string::npos);
+  EXPECT_NE(ply.find("element face " + std::to_string(r.model.num_faces()) + "\n"), std::string::npos);
   const std::string json = ReadFileToString(dir + "/" + kMosaicJson);
   EXPECT_NE(json.find("\"format\": \"hull-mosaic\""), std::string::npos);
 }
