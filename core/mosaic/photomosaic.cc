@@ -289,6 +289,7 @@ void MosaicOptions::Check() const {
   require(max_atlas_size >= 256 && max_atlas_size <= 65535, "max_atlas_size", "must be in 256..65535");
   require(truth_samples >= 1, "truth_samples", "must be >= 1");
   require(num_threads >= 0, "num_threads", "must be >= 0 (0: all cores)");
+  require(image_cache_mb >= 0, "image_cache_mb", "must be >= 0");
   photometry.Check();
 }
 
@@ -600,11 +601,22 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
     face_views[f] = std::move(vs);
   }
 
-  // ---- Images, one pass per stage, read one ahead of use.
+  // ---- Images, one pass per stage, read one ahead of use; decoded images
+  // are kept for the second pass (gains, then texturing) within the budget.
+  std::vector<cv::Mat> cache(static_cast<std::size_t>(nviews));
+  std::size_t cached_bytes = 0;
+  const std::size_t cache_budget = options.normalisation == MosaicNormalisation::kModelAndGains
+                                       ? static_cast<std::size_t>(options.image_cache_mb) << 20
+                                       : 0;
   auto for_each_image = [&](double p0, double p1, const char* what,
                             const std::function<void(int, const cv::Mat&)>& fn) {
     std::future<cv::Mat> next;
     auto read = [&](int vi) {
+      if (!cache[static_cast<std::size_t>(vi)].empty()) {
+        std::promise<cv::Mat> ready;
+        ready.set_value(cache[static_cast<std::size_t>(vi)]);
+        return ready.get_future();
+      }
       return std::async(std::launch::async, [&, vi] {
         return in.read_image(view_keyframe[static_cast<std::size_t>(vi)],
                              cameras[static_cast<std::size_t>(vi)].bottom());
@@ -621,6 +633,11 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
       if (img.empty() || img.cols != W || img.rows != H) {
         throw std::runtime_error("image of keyframe " + std::to_string(R.views[static_cast<std::size_t>(vi)].keyframe) +
                                  " is not " + std::to_string(W) + "x" + std::to_string(H));
+      }
+      const std::size_t bytes = img.total() * img.elemSize();
+      if (cache[static_cast<std::size_t>(vi)].empty() && cached_bytes + bytes <= cache_budget) {
+        cache[static_cast<std::size_t>(vi)] = img;
+        cached_bytes += bytes;
       }
       fn(vi, img);
       progress.Update(p0 + (p1 - p0) * (vi + 1) / nviews,

@@ -74,6 +74,7 @@ struct MosaicOptions {
   double gain_prior_sigma = 0.2;        // sigma of ln(gain) around 0 (trust in the model's absolute level)
   int max_atlas_size = 16384;           // px: the texel size grows until the atlas fits
   int truth_samples = 16;               // texels per face scored against the true albedo
+  int image_cache_mb = 4096;            // decoded images kept between the gain and texturing passes
   int num_threads = 0;                  // 0: all cores
 
   void Check() const;  // throws OptionError naming the field

@@ -8,7 +8,8 @@
 // --snapshot renders the textured model (not timed) orthographically along
 // the cameras' mean viewing direction, 5 mm per pixel, each pixel the atlas
 // sampled bilinearly at the UV of the surface point it sees: a look at the
-// mosaic (seams, gains) without a GUI.
+// mosaic (seams, gains) without a GUI; also its centre at full resolution
+// (<name>_centre.png).
 //
 // RESULTS as for 'hullinspect-cli mosaic' (run's folder with adjustment/ and
 // mapping/model.ply). Loading the adjustment, bundle and model is not timed.
@@ -119,12 +120,14 @@ int main(int argc, char** argv) {
     } else if (results.empty() && a.rfind("--", 0) != 0) {
       results = a;
     } else {
-      std::fprintf(stderr, "usage: %s RESULTS [--threads T] [--texel M] [--no-truth] [--write DIR]\n", argv[0]);
+      std::fprintf(stderr, "usage: %s RESULTS [--threads T] [--texel M] [--no-truth] [--write DIR] [--snapshot PNG]\n",
+                   argv[0]);
       return 2;
     }
   }
   if (results.empty()) {
-    std::fprintf(stderr, "usage: %s RESULTS [--threads T] [--texel M] [--no-truth] [--write DIR]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s RESULTS [--threads T] [--texel M] [--no-truth] [--write DIR] [--snapshot PNG]\n",
+                 argv[0]);
     return 2;
   }
   try {
@@ -169,6 +172,12 @@ int main(int argc, char** argv) {
       const cv::Mat shot = Snapshot(r, 0.005);
       hull::WriteImageFile(snapshot, shot);
       std::printf("snapshot %dx%d -> %s\n", shot.cols, shot.rows, snapshot.c_str());
+      // And its centre at full resolution (900 x 700 pixels, 4.5 x 3.5 m), for seams.
+      const int cw = std::min(900, shot.cols), chh = std::min(700, shot.rows);
+      const cv::Mat centre = shot(cv::Rect((shot.cols - cw) / 2, (shot.rows - chh) / 2, cw, chh)).clone();
+      const std::string crop = snapshot.substr(0, snapshot.size() - 4) + "_centre.png";
+      hull::WriteImageFile(crop, centre);
+      std::printf("centre crop -> %s\n", crop.c_str());
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
