@@ -355,6 +355,18 @@ TEST(Mosaic, WritesTheFolderTheGltfExporterReads) {
   EXPECT_NE(json.find("\"format\": \"hull-mosaic\""), std::string::npos);
 }
 
+TEST(Mosaic, CancelledBeforeWorkThrowsCancelledAndReportsProgress) {
+  TriangleMesh plane;
+  AddPlane(plane, 4, 0.3, 0.0);
+  const MosaicInput in = PlaneInput({LookingDown(0, 0, 1)}, {SmoothImage(1)}, plane);
+  double last = -1;
+  CallbackProgress progress([&](double f, const std::string&) { last = f; });
+  const MosaicResult done = BuildMosaic(in, RawOptions(), progress);
+  EXPECT_EQ(last, 1.0);
+  progress.RequestCancel();
+  EXPECT_THROW(BuildMosaic(in, RawOptions(), progress), Cancelled);
+}
+
 TEST(Mosaic, ResultsFolderWithoutModelIsNamed) {
   const testing::ScratchDir tmp("mosaic_sources");
   EXPECT_THROW(LocateMosaicSources(tmp / "nothing"), InputError);
