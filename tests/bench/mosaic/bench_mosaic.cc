@@ -9,7 +9,8 @@
 // the cameras' mean viewing direction, 5 mm per pixel, each pixel the atlas
 // sampled bilinearly at the UV of the surface point it sees: a look at the
 // mosaic (seams, gains) without a GUI; also its centre at full resolution
-// (<name>_centre.png).
+// (<name>_centre.png), and the same with the per-vertex colours of mosaic.ply
+// (<name>_vertex.png, <name>_vertex_centre.png).
 //
 // RESULTS as for 'hullinspect-cli mosaic' (run's folder with adjustment/ and
 // mapping/model.ply). Loading the adjustment, bundle and model is not timed.
@@ -40,7 +41,8 @@ double CpuSeconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 // Orthographic render of the textured faces along the cameras' mean axis.
-cv::Mat Snapshot(const hull::MosaicResult& r, double pixel) {
+// vertex_colours: shade with the per-vertex values (the PLY's colours) instead of the atlas.
+cv::Mat Snapshot(const hull::MosaicResult& r, double pixel, bool vertex_colours) {
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
   for (const hull::MosaicView& v : r.views) d += v.x_Mc.rotation().col(2);
   d.normalize();
@@ -87,6 +89,17 @@ cv::Mat Snapshot(const hull::MosaicResult& r, double pixel) {
                 y0 = std::clamp(static_cast<int>(ay), 0, r.atlas.rows - 2);
       const float fx = std::clamp(ax - static_cast<float>(x0), 0.0f, 1.0f),
                   fy = std::clamp(ay - static_cast<float>(y0), 0.0f, 1.0f);
+      if (vertex_colours) {
+        for (int k = 0; k < r.channels; ++k) {
+          const auto ch = static_cast<std::size_t>(r.channels);
+          auto val = [&](int c) {
+            return r.vertex_values[static_cast<std::size_t>(F[c]) * ch + static_cast<std::size_t>(k)];
+          };
+          const double v = (l0 * val(0) + l1 * val(1) + l2 * val(2)) * 255.0;
+          out.ptr<std::uint8_t>(j)[i * r.channels + k] = static_cast<std::uint8_t>(std::clamp(v + 0.5, 0.0, 255.0));
+        }
+        continue;
+      }
       for (int k = 0; k < r.channels; ++k) {
         auto at = [&](int y, int x) { return static_cast<float>(r.atlas.ptr<std::uint8_t>(y)[x * r.channels + k]); };
         const float v = (1 - fy) * ((1 - fx) * at(y0, x0) + fx * at(y0, x0 + 1)) +
@@ -169,15 +182,17 @@ int main(int argc, char** argv) {
       std::printf("write: %.2f s -> %s\n", Seconds(t1), write_dir.c_str());
     }
     if (!snapshot.empty()) {
-      const cv::Mat shot = Snapshot(r, 0.005);
-      hull::WriteImageFile(snapshot, shot);
-      std::printf("snapshot %dx%d -> %s\n", shot.cols, shot.rows, snapshot.c_str());
-      // And its centre at full resolution (900 x 700 pixels, 4.5 x 3.5 m), for seams.
-      const int cw = std::min(900, shot.cols), chh = std::min(700, shot.rows);
-      const cv::Mat centre = shot(cv::Rect((shot.cols - cw) / 2, (shot.rows - chh) / 2, cw, chh)).clone();
-      const std::string crop = snapshot.substr(0, snapshot.size() - 4) + "_centre.png";
-      hull::WriteImageFile(crop, centre);
-      std::printf("centre crop -> %s\n", crop.c_str());
+      for (bool vertex : {false, true}) {
+        const cv::Mat shot = Snapshot(r, 0.005, vertex);
+        const std::string stem = snapshot.substr(0, snapshot.size() - 4) + (vertex ? "_vertex" : "");
+        hull::WriteImageFile(stem + ".png", shot);
+        std::printf("snapshot %dx%d -> %s.png\n", shot.cols, shot.rows, stem.c_str());
+        // And its centre at full resolution (900 x 700 pixels, 4.5 x 3.5 m), for seams.
+        const int cw = std::min(900, shot.cols), chh = std::min(700, shot.rows);
+        const cv::Mat centre = shot(cv::Rect((shot.cols - cw) / 2, (shot.rows - chh) / 2, cw, chh)).clone();
+        hull::WriteImageFile(stem + "_centre.png", centre);
+        std::printf("centre crop -> %s_centre.png\n", stem.c_str());
+      }
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
