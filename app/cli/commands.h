@@ -21,5 +21,6 @@ int RunSonar(const CommandArgs& args);     // cmd_sonar.cc    (imaging-sonar EKF
 int RunExport(const CommandArgs& args);    // cmd_export.cc   (the remeshed model in other formats)
 int RunFeatures(const CommandArgs& args);  // cmd_features.cc (visual front end: images -> features.csv)
 int RunPlugins(const CommandArgs& args);   // cmd_plugins.cc  (what loaded, what was refused)
+int RunMosaic(const CommandArgs& args);    // cmd_mosaic.cc   (3-D photomosaic of the remeshed model)
 
 }  // namespace hull::cli

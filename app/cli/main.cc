@@ -29,6 +29,7 @@ const Command kCommands[] = {
     {"run", hull::cli::RunPipeline, "the whole pipeline without a display (alignment, adjustment, mapping)"},
     {"adjust", hull::cli::RunAdjust, "model-assisted bundle adjustment (naive, all-on-surface, max-mixture)"},
     {"map", hull::cli::RunMap, "shapes of foreign structure, remeshed hull, fouling assessment"},
+    {"mosaic", hull::cli::RunMosaic, "3-D photomosaic: the remeshed model textured from the survey's images"},
     {"compare", hull::cli::RunCompare, "change between two surveys of one hull (per vertex and per object)"},
     {"sonar", hull::cli::RunSonar, "reconstruct features from an acoustic sequence with the sonar EKF"},
     {"export", hull::cli::RunExport,

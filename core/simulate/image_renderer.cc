@@ -158,6 +158,22 @@ RayHit UnderwaterCamera::SurfaceAt(const TrueScene& scene, const Pose& x_Mc, dou
   return scene.index().Raycast(x_Mc.translation(), x_Mc.Rotate(Ray(u, v)), options_.max_range);
 }
 
+UnderwaterCamera::Response UnderwaterCamera::ResponseAt(const Eigen::Vector3d& p_c, const Eigen::Vector3d& n_c,
+                                                        double u, double v) const {
+  const double c = options_.attenuation, t = p_c.norm();
+  double e = 0;
+  for (const Light& l : lights_) e += l.Irradiance(p_c, n_c, c);
+  const double x = (u - intrinsics_.cx) / intrinsics_.fx, y = (v - intrinsics_.cy) / intrinsics_.fy;
+  const double cos2 = 1.0 / (1.0 + x * x + y * y);
+  const double vignette = std::pow(cos2 * cos2, options_.vignetting);
+  const int iu = std::clamp(static_cast<int>(std::lround(u)), 0, width_ - 1);
+  const int iv = std::clamp(static_cast<int>(std::lround(v)), 0, height_ - 1);
+  Response r;
+  r.per_albedo = gain_ * vignette * e / M_PI * std::exp(-c * t);
+  r.offset = gain_ * vignette * Veil(iu, iv, static_cast<float>(t));
+  return r;
+}
+
 cv::Mat UnderwaterCamera::Render(const TrueScene& scene, const Pose& x_Mc, std::uint64_t noise_seed, cv::Mat* range,
                                  cv::Mat* signal) const {
   cv::Mat image(height_, width_, CV_8UC1);

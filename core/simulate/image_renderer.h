@@ -77,6 +77,19 @@ class UnderwaterCamera {
   // The surface point imaged at pixel position (u, v).
   RayHit SurfaceAt(const TrueScene& scene, const Pose& x_Mc, double u, double v) const;
 
+  // The noise-free exposure Render() models at a lit surface point, as a
+  // linear function of the albedo: signal = per_albedo * albedo + offset
+  // (share of full scale), for the point p_c (camera frame) with unit normal
+  // n_c seen at pixel position (u, v): strobe beam, inverse-square fall-off,
+  // Lambert's cosine and Beer-Lambert attenuation in per_albedo, the
+  // backscatter veil in offset, both times vignetting and the gain. Strobe
+  // shadows are not modelled (the point is taken as lit by every strobe). A
+  // photomosaic inverts it: albedo = (signal - offset) / per_albedo.
+  struct Response {
+    double per_albedo = 0, offset = 0;
+  };
+  Response ResponseAt(const Eigen::Vector3d& p_c, const Eigen::Vector3d& n_c, double u, double v) const;
+
   int width() const { return width_; }
   int height() const { return height_; }
   const PinholeIntrinsics& intrinsics() const { return intrinsics_; }

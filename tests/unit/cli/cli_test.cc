@@ -46,8 +46,8 @@ CliRun Cli(const std::vector<std::string>& args) {
   return r;
 }
 
-const std::vector<std::string> kCommands = {"simulate", "validate", "info",   "align",   "run",     "adjust",
-                                            "map",      "sonar",    "export", "plugins", "features"};
+const std::vector<std::string> kCommands = {"simulate", "validate", "info",   "align",   "run",      "adjust",
+                                            "map",      "sonar",    "export", "plugins", "features", "mosaic"};
 
 TEST(Cli, EveryCommandHasHelp) {
   for (const std::string& c : kCommands) {
@@ -343,6 +343,27 @@ TEST(CliRobust, OutputLocationIsCheckedBeforeAnyWork) {
   r = Cli({"export", bundle, "--out", tmp / "no/such/parent/x.ply"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
+}
+
+TEST(CliRobust, MosaicRefusesMissingResultsAndAFileAsOutput) {
+  const hull::testing::ScratchDir tmp("cli_mosaic");
+  hull::testing::WriteText(tmp / "a-file", "x");
+  // RESULTS that does not exist: a bad command line, named.
+  CliRun r = Cli({"mosaic", tmp / "no-such-results", "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("no-such-results"), std::string::npos) << r.output;
+  // --out onto a file: refused before any work.
+  std::filesystem::create_directories(tmp / "results");
+  r = Cli({"mosaic", tmp / "results", "--out", tmp / "a-file", "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("is a file; expected a folder"), std::string::npos) << r.output;
+  r = Cli({"mosaic", tmp / "results", "--normalise", "magic"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--normalise expects none, model or gains"), std::string::npos) << r.output;
+  // A folder that is not results: unreadable input (exit 3), saying what is missing.
+  r = Cli({"mosaic", tmp / "results", "--quiet"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("adjustment.json"), std::string::npos) << r.output;
 }
 
 TEST(CliRobust, NotGzipAndDegenerateBombAreRefused) {

@@ -1,0 +1,924 @@
+#include "mosaic/photomosaic.h"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <Eigen/Sparse>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <future>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <opencv2/core.hpp>
+#include <stdexcept>
+
+#include "base/error.h"
+#include "geometry/mesh_index.h"
+#include "mosaic/mosaic_camera.h"
+#include "simulate/survey_imaging.h"
+
+namespace hull {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr int kSamples = 4;  // points per face for visibility and gains
+constexpr int kMaxViewsPerVertex = 4;
+
+// The centroid and three points toward the corners (85 % of the way): a face
+// counts as seen only when all four are.
+std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f) {
+  const Face& F = m.faces[static_cast<std::size_t>(f)];
+  const Eigen::Vector3d a = m.vertices[static_cast<std::size_t>(F[0])], b = m.vertices[static_cast<std::size_t>(F[1])],
+                        c = m.vertices[static_cast<std::size_t>(F[2])];
+  const Eigen::Vector3d g = (a + b + c) / 3.0;
+  return {g, g + 0.85 * (a - g), g + 0.85 * (b - g), g + 0.85 * (c - g)};
+}
+
+// Nearest-rank percentile (q in [0, 1]) of a non-empty sample.
+double Percentile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const std::size_t k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::min(v.size() - 1, k == 0 ? 0 : k - 1)];
+}
+
+struct Candidate {
+  int view = -1;
+  float score = 0;  // cos(incidence) / distance^2
+  float value = 0;  // mean normalised value at the face's samples (before gains); <= 0: unusable for gains
+};
+
+// Bilinear sample of an 8/16-bit, 1- or 3-channel image at pixel position
+// (u, v) (pixel centres at integers), as shares of full scale; false outside.
+bool Sample(const cv::Mat& img, double u, double v, float* out) {
+  if (!(u >= 0 && v >= 0 && u <= img.cols - 1 && v <= img.rows - 1)) return false;
+  const int x0 = std::min(static_cast<int>(u), img.cols - 2 < 0 ? 0 : img.cols - 2);
+  const int y0 = std::min(static_cast<int>(v), img.rows - 2 < 0 ? 0 : img.rows - 2);
+  const int x1 = std::min(x0 + 1, img.cols - 1), y1 = std::min(y0 + 1, img.rows - 1);
+  const float fx = static_cast<float>(u - x0), fy = static_cast<float>(v - y0);
+  const int ch = img.channels();
+  const bool wide = img.depth() == CV_16U;
+  const float scale = wide ? 1.0f / 65535.0f : 1.0f / 255.0f;
+  auto at = [&](int y, int x, int c) -> float {
+    return wide ? img.ptr<std::uint16_t>(y)[x * ch + c] : img.ptr<std::uint8_t>(y)[x * ch + c];
+  };
+  for (int c = 0; c < ch; ++c) {
+    const float top = (1 - fx) * at(y0, x0, c) + fx * at(y0, x1, c);
+    const float bot = (1 - fx) * at(y1, x0, c) + fx * at(y1, x1, c);
+    out[c] = ((1 - fy) * top + fy * bot) * scale;
+  }
+  return true;
+}
+
+// A face's rectangle in the atlas and its corners there.
+struct Chart {
+  int x = 0, y = 0, w = 0, h = 0;        // texels
+  std::array<Eigen::Vector2d, 3> local;  // corners in texels relative to (x, y)
+};
+
+// Lays the triangle out flat (longest edge along x) at `texel` m per texel
+// with one texel of border.
+Chart FlatChart(const TriangleMesh& m, int f, double texel) {
+  const Face& F = m.faces[static_cast<std::size_t>(f)];
+  std::array<Eigen::Vector3d, 3> p;
+  for (int i = 0; i < 3; ++i) p[static_cast<std::size_t>(i)] = m.vertices[static_cast<std::size_t>(F[i])];
+  int base = 0;  // corner where the longest edge (base -> base+1) starts
+  double longest = -1;
+  for (int i = 0; i < 3; ++i) {
+    const double l = (p[static_cast<std::size_t>((i + 1) % 3)] - p[static_cast<std::size_t>(i)]).norm();
+    if (l > longest) longest = l, base = i;
+  }
+  const Eigen::Vector3d a = p[static_cast<std::size_t>(base)], b = p[static_cast<std::size_t>((base + 1) % 3)],
+                        c = p[static_cast<std::size_t>((base + 2) % 3)];
+  const double ab = std::max((b - a).norm(), 1e-12);
+  const Eigen::Vector3d ex = (b - a) / ab;
+  const double cx = (c - a).dot(ex), cy = ((c - a) - cx * ex).norm();
+  constexpr double kBorder = 1.0;
+  Chart ch;
+  ch.w = static_cast<int>(std::ceil(ab / texel + 2 * kBorder)) + 1;
+  ch.h = static_cast<int>(std::ceil(cy / texel + 2 * kBorder)) + 1;
+  ch.local[static_cast<std::size_t>(base)] = {kBorder, kBorder};
+  ch.local[static_cast<std::size_t>((base + 1) % 3)] = {kBorder + ab / texel, kBorder};
+  ch.local[static_cast<std::size_t>((base + 2) % 3)] = {kBorder + cx / texel, kBorder + cy / texel};
+  return ch;
+}
+
+// Shelf packing (tallest first) into rows of `width` texels; returns the height.
+int PackShelves(std::vector<Chart>& charts, const std::vector<int>& order, int width) {
+  int x = 0, y = 0, row = 0;
+  for (int f : order) {
+    Chart& c = charts[static_cast<std::size_t>(f)];
+    if (x + c.w > width) {
+      y += row;
+      x = 0;
+      row = 0;
+    }
+    c.x = x;
+    c.y = y;
+    x += c.w;
+    row = std::max(row, c.h);
+  }
+  return y + row;
+}
+
+// Barycentric coordinates of q in the 2-D triangle, clamped onto it (the
+// closest point of the triangle in barycentric form); `inside` says whether
+// q was inside already.
+Eigen::Vector3d Barycentric(const std::array<Eigen::Vector2d, 3>& t, const Eigen::Vector2d& q, bool* inside) {
+  const Eigen::Vector2d v0 = t[1] - t[0], v1 = t[2] - t[0], v2 = q - t[0];
+  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
+  const double den = d00 * d11 - d01 * d01;
+  Eigen::Vector3d b(1.0 / 3, 1.0 / 3, 1.0 / 3);
+  if (std::abs(den) > 1e-18) {
+    const double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
+    b = {1 - v - w, v, w};
+  }
+  *inside = b.minCoeff() >= -1e-9;
+  if (*inside) return b;
+  // Closest point on the three edges; within kExtrapolate texels of the
+  // triangle the plane is extended instead (the border texels a bilinear
+  // lookup inside the triangle reaches continue the texture).
+  constexpr double kExtrapolate = 1.5;
+  double best = 1e300;
+  Eigen::Vector3d out = b;
+  for (int i = 0; i < 3; ++i) {
+    const Eigen::Vector2d& a = t[static_cast<std::size_t>(i)];
+    const Eigen::Vector2d& e = t[static_cast<std::size_t>((i + 1) % 3)];
+    const Eigen::Vector2d ae = e - a;
+    const double s = std::clamp(ae.squaredNorm() > 0 ? (q - a).dot(ae) / ae.squaredNorm() : 0.0, 0.0, 1.0);
+    const double d = (a + s * ae - q).squaredNorm();
+    if (d < best) {
+      best = d;
+      out.setZero();
+      out[i] = 1 - s;
+      out[(i + 1) % 3] = s;
+    }
+  }
+  return best <= kExtrapolate * kExtrapolate ? b : out;
+}
+
+// Sparse per-vertex view weights.
+struct ViewWeights {
+  std::array<int, kMaxViewsPerVertex> view;
+  std::array<float, kMaxViewsPerVertex> weight;
+  ViewWeights() {
+    view.fill(-1);
+    weight.fill(0);
+  }
+  float Of(int v) const {
+    for (int i = 0; i < kMaxViewsPerVertex; ++i) {
+      if (view[static_cast<std::size_t>(i)] == v) return weight[static_cast<std::size_t>(i)];
+    }
+    return 0;
+  }
+};
+
+ViewWeights Strongest(std::map<int, double>& acc) {
+  std::vector<std::pair<double, int>> all;
+  for (const auto& [v, w] : acc) {
+    if (w > 0) all.emplace_back(w, v);
+  }
+  std::sort(all.begin(), all.end(),
+            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
+  ViewWeights out;
+  double sum = 0;
+  for (std::size_t i = 0; i < all.size() && i < kMaxViewsPerVertex; ++i) sum += all[i].first;
+  for (std::size_t i = 0; i < all.size() && i < kMaxViewsPerVertex; ++i) {
+    out.view[i] = all[i].second;
+    out.weight[i] = static_cast<float>(all[i].first / sum);
+  }
+  return out;
+}
+
+// Splits every edge longer than max_edge of the faces that `near` accepts,
+// conformingly: each round bisects the marked edges, a face with one, two
+// or three marked edges becomes two, three or four triangles.
+void SplitLongEdges(TriangleMesh& m, double max_edge, const std::function<bool(int)>& near) {
+  std::vector<char> active(m.num_faces(), 0);
+  for (std::size_t f = 0; f < m.num_faces(); ++f) active[f] = near(static_cast<int>(f)) ? 1 : 0;
+  const double l2 = max_edge * max_edge;
+  for (int round = 0; round < 30; ++round) {
+    std::map<std::pair<int, int>, int> mid;  // marked edge -> new vertex
+    for (std::size_t f = 0; f < m.num_faces(); ++f) {
+      if (!active[f]) continue;
+      for (int i = 0; i < 3; ++i) {
+        const int a = m.faces[f][i], b = m.faces[f][(i + 1) % 3];
+        if ((m.vertices[static_cast<std::size_t>(a)] - m.vertices[static_cast<std::size_t>(b)]).squaredNorm() <= l2) {
+          continue;
+        }
+        const auto key = std::minmax(a, b);
+        if (mid.count(key)) continue;
+        mid[key] = static_cast<int>(m.vertices.size());
+        m.vertices.push_back(0.5 * (m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)]));
+      }
+    }
+    if (mid.empty()) break;
+    std::vector<Face> faces;
+    std::vector<char> next_active;
+    faces.reserve(m.faces.size() + 3 * mid.size());
+    for (std::size_t f = 0; f < m.num_faces(); ++f) {
+      const Face F = m.faces[f];
+      int e[3];
+      int marked = 0;
+      for (int i = 0; i < 3; ++i) {
+        const auto it = mid.find(std::minmax(F[i], F[(i + 1) % 3]));
+        e[i] = it == mid.end() ? -1 : it->second;
+        marked += e[i] >= 0 ? 1 : 0;
+      }
+      auto add = [&](int a, int b, int c) {
+        faces.push_back({a, b, c});
+        next_active.push_back(active[f]);
+      };
+      if (marked == 0) {
+        add(F[0], F[1], F[2]);
+      } else if (marked == 3) {
+        add(F[0], e[0], e[2]);
+        add(e[0], F[1], e[1]);
+        add(e[2], e[1], F[2]);
+        add(e[0], e[1], e[2]);
+      } else if (marked == 1) {
+        const int i = e[0] >= 0 ? 0 : e[1] >= 0 ? 1 : 2;  // edge F[i] -> F[i+1]
+        add(F[i], e[i], F[(i + 2) % 3]);
+        add(e[i], F[(i + 1) % 3], F[(i + 2) % 3]);
+      } else {
+        const int i = e[0] < 0 ? 0 : e[1] < 0 ? 1 : 2;  // the unmarked edge F[i] -> F[i+1]
+        const int a = F[i], b = F[(i + 1) % 3], c = F[(i + 2) % 3];
+        const int mbc = e[(i + 1) % 3], mca = e[(i + 2) % 3];
+        add(mca, mbc, c);
+        add(a, b, mbc);
+        add(a, mbc, mca);
+      }
+    }
+    m.faces.swap(faces);
+    active.swap(next_active);
+  }
+  m.vertex_scalars.clear();  // per-vertex values (deviation, fusions) do not survive the split
+  m.ComputeNormals();
+}
+
+}  // namespace
+
+const char* MosaicNormalisationName(MosaicNormalisation n) {
+  switch (n) {
+    case MosaicNormalisation::kNone:
+      return "none";
+    case MosaicNormalisation::kModel:
+      return "model";
+    case MosaicNormalisation::kModelAndGains:
+      return "model+gains";
+  }
+  return "?";
+}
+
+void MosaicOptions::Check() const {
+  auto require = [](bool ok, const char* field, const char* why) {
+    if (!ok) throw OptionError(field, why);
+  };
+  require(texel_size > 0 && texel_size < 1, "texel_size", "must be in (0, 1) m");
+  require(max_edge > 0, "max_edge", "must be positive");
+  require(max_range > 0, "max_range", "must be positive");
+  require(max_incidence_deg > 0 && max_incidence_deg < 90, "max_incidence_deg", "must be in (0, 90) degrees");
+  require(image_margin >= 0, "image_margin", "must be >= 0");
+  require(seam_weight >= 0, "seam_weight", "must be >= 0");
+  require(label_iterations >= 0, "label_iterations", "must be >= 0");
+  require(feather_rings >= 0 && feather_rings <= 50, "feather_rings", "must be in 0..50");
+  require(gain_prior_sigma > 0, "gain_prior_sigma", "must be positive");
+  require(max_atlas_size >= 256 && max_atlas_size <= 65535, "max_atlas_size", "must be in 256..65535");
+  require(truth_samples >= 1, "truth_samples", "must be >= 1");
+  require(num_threads >= 0, "num_threads", "must be >= 0 (0: all cores)");
+  require(image_cache_mb >= 0, "image_cache_mb", "must be >= 0");
+  photometry.Check();
+}
+
+Eigen::Vector2f MosaicResult::Uv(int face, int corner) const {
+  const Eigen::Vector2f& c = corners[static_cast<std::size_t>(face)][static_cast<std::size_t>(corner)];
+  return {c.x() / static_cast<float>(atlas.cols), 1.0f - c.y() / static_cast<float>(atlas.rows)};
+}
+
+MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Progress& progress,
+                         const TrueScene* truth) {
+  options.Check();
+  if (in.model.empty()) throw std::invalid_argument("BuildMosaic: the model has no faces");
+  if (in.poses.size() != in.keyframes.size() || in.servo.size() != in.keyframes.size()) {
+    throw std::invalid_argument("BuildMosaic: keyframes, poses and servo angles differ in number");
+  }
+  if (!in.has_image || !in.read_image) throw std::invalid_argument("BuildMosaic: no image access");
+  tbb::task_arena arena(options.num_threads > 0 ? options.num_threads : tbb::task_arena::automatic);
+  const auto t_start = Clock::now();
+
+  MosaicResult R;
+  R.options = options;
+  R.normalisation = options.normalisation;
+  R.model = in.model;
+  TriangleMesh& model = R.model;
+  model.ComputeNormals();
+
+  // ---- Views.
+  const bool stereo = in.manifest.camera.stereo();
+  std::vector<MosaicCamera> cameras;
+  std::vector<std::size_t> view_keyframe;  // keyframe index of each view
+  for (std::size_t k = 0; k < in.keyframes.size(); ++k) {
+    for (bool b : {false, true}) {
+      if (b && !stereo) continue;
+      if (!in.has_image(k, b)) continue;
+      cameras.emplace_back(in.manifest, in.poses[k], in.servo[k], in.x_s_cT, in.x_gM, b);
+      view_keyframe.push_back(k);
+      MosaicView v;
+      v.keyframe = in.keyframes[k];
+      v.bottom = b;
+      v.x_Mc = cameras.back().x_Mc();
+      R.views.push_back(v);
+    }
+  }
+  const int nviews = static_cast<int>(cameras.size());
+  if (nviews == 0) throw std::invalid_argument("the survey has no images to texture the model with");
+  // Faces within max_range of the cameras' bounding box get their long edges split.
+  {
+    Eigen::AlignedBox3d box;
+    for (const MosaicCamera& c : cameras) box.extend(c.centre());
+    SplitLongEdges(model, options.max_edge, [&](int f) {
+      const Face& F = model.faces[static_cast<std::size_t>(f)];
+      const Eigen::Vector3d g = model.FaceCentroid(f);
+      double r = 0;
+      for (int i = 0; i < 3; ++i) r = std::max(r, (model.vertices[static_cast<std::size_t>(F[i])] - g).norm());
+      return box.exteriorDistance(g) <= options.max_range + r;
+    });
+  }
+  const std::size_t nf = model.num_faces(), nv = model.num_vertices();
+  const MeshIndex index(model);
+  const int W = in.manifest.camera.width, H = in.manifest.camera.height;
+  const bool use_model = options.normalisation != MosaicNormalisation::kNone;
+  std::unique_ptr<UnderwaterCamera> photo_top, photo_bottom;
+  if (use_model) {
+    photo_top = MakeSurveyCamera(in.manifest, options.photometry, false);
+    if (stereo) photo_bottom = MakeSurveyCamera(in.manifest, options.photometry, true);
+  }
+  // Normalised value of a pixel sample: albedo estimate (model) or the raw share of full scale.
+  auto normalise = [&](const MosaicCamera& cam, const Eigen::Vector3d& p_c, const Eigen::Vector3d& n_M,
+                       const Eigen::Vector2d& uv, float* px, int ch) {
+    if (!use_model) return;
+    Eigen::Vector3d n_c = cam.x_Mc().rotation().transpose() * n_M;
+    if (n_c.dot(p_c) > 0) n_c = -n_c;  // the side facing the camera
+    const UnderwaterCamera& u = cam.bottom() ? *photo_bottom : *photo_top;
+    const UnderwaterCamera::Response r = u.ResponseAt(p_c, n_c, uv.x(), uv.y());
+    const float k = r.per_albedo > 1e-9 ? static_cast<float>(1.0 / r.per_albedo) : 0.0f;
+    for (int c = 0; c < ch; ++c) px[c] = (px[c] - static_cast<float>(r.offset)) * k;
+  };
+
+  // ---- Candidates: visible, unoccluded, in the image, near and frontal enough.
+  progress.Update(0.0, "visibility of " + std::to_string(nf) + " faces in " + std::to_string(nviews) + " images");
+  const auto t_vis = Clock::now();
+  const double cos_max = std::cos(options.max_incidence_deg * M_PI / 180.0);
+  const double margin = options.image_margin;
+  std::vector<std::vector<std::pair<int, float>>> seen(static_cast<std::size_t>(nviews));  // view -> (face, score)
+  arena.execute([&] {
+    tbb::parallel_for(0, nviews, [&](int vi) {
+      if (progress.Cancelled()) return;
+      const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
+      const Eigen::Vector3d o = cam.centre();
+      std::vector<std::pair<int, float>> pass;
+      std::vector<Eigen::Vector3d> points;
+      for (std::size_t f = 0; f < nf; ++f) {
+        const Eigen::Vector3d g = model.FaceCentroid(static_cast<int>(f));
+        const Eigen::Vector3d to = o - g;
+        const double d = to.norm();
+        if (!(d > 1e-6 && d <= options.max_range)) continue;
+        const double cosi = model.face_normals[f].dot(to) / d;
+        if (cosi < cos_max) continue;
+        bool in_image = true;
+        for (int i = 0; i < 3 && in_image; ++i) {
+          Eigen::Vector2d uv;
+          in_image = cam.Project(model.vertices[static_cast<std::size_t>(model.faces[f][i])], &uv) &&
+                     uv.x() >= margin && uv.y() >= margin && uv.x() <= W - 1 - margin && uv.y() <= H - 1 - margin;
+        }
+        if (!in_image) continue;
+        pass.emplace_back(static_cast<int>(f), static_cast<float>(cosi / (d * d)));
+        for (const Eigen::Vector3d& p : FaceSamples(model, static_cast<int>(f))) points.push_back(p);
+      }
+      std::unique_ptr<bool[]> blocked(new bool[points.size() + 1]);
+      index.OccludedToward(points.data(), static_cast<int>(points.size()), o, 1e-3, blocked.get());
+      auto& out = seen[static_cast<std::size_t>(vi)];
+      for (std::size_t i = 0; i < pass.size(); ++i) {
+        bool free = true;
+        for (int s = 0; s < kSamples; ++s) free = free && !blocked[i * kSamples + static_cast<std::size_t>(s)];
+        if (free) out.push_back(pass[i]);
+      }
+    });
+  });
+  progress.ThrowIfCancelled();
+  std::vector<std::vector<Candidate>> cand(nf);
+  for (int vi = 0; vi < nviews; ++vi) {
+    R.views[static_cast<std::size_t>(vi)].candidates = static_cast<int>(seen[static_cast<std::size_t>(vi)].size());
+    for (const auto& [f, s] : seen[static_cast<std::size_t>(vi)])
+      cand[static_cast<std::size_t>(f)].push_back({vi, s, 0});
+  }
+  seen.clear();
+  R.summary.seconds.visibility = Since(t_vis);
+
+  // ---- Labelling: best view, then Potts smoothing by iterated conditional modes.
+  progress.Update(0.2, "choosing a view per face");
+  const auto t_label = Clock::now();
+  // Face adjacency over shared edges.
+  std::vector<std::array<int, 3>> nbr(nf, {-1, -1, -1});
+  {
+    std::vector<std::pair<std::uint64_t, int>> edges;
+    edges.reserve(3 * nf);
+    for (std::size_t f = 0; f < nf; ++f) {
+      for (int i = 0; i < 3; ++i) {
+        const auto a = static_cast<std::uint64_t>(model.faces[f][i]),
+                   b = static_cast<std::uint64_t>(model.faces[f][(i + 1) % 3]);
+        edges.emplace_back(std::min(a, b) << 32 | std::max(a, b), static_cast<int>(f) * 3 + i);
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+      if (edges[i].first != edges[i + 1].first) continue;
+      if (i + 2 < edges.size() && edges[i + 2].first == edges[i].first) continue;  // non-manifold: no neighbours
+      if (i > 0 && edges[i - 1].first == edges[i].first) continue;
+      const int fa = edges[i].second / 3, ea = edges[i].second % 3, fb = edges[i + 1].second / 3,
+                eb = edges[i + 1].second % 3;
+      nbr[static_cast<std::size_t>(fa)][static_cast<std::size_t>(ea)] = fb;
+      nbr[static_cast<std::size_t>(fb)][static_cast<std::size_t>(eb)] = fa;
+    }
+  }
+  R.faces.assign(nf, MosaicFace{});
+  std::vector<float> best_score(nf, 0);
+  for (std::size_t f = 0; f < nf; ++f) {
+    MosaicFace& F = R.faces[f];
+    F.candidates = static_cast<int>(cand[f].size());
+    for (const Candidate& c : cand[f]) {
+      if (c.score > best_score[f]) best_score[f] = c.score, F.view = c.view;
+    }
+  }
+  for (int it = 0; it < options.label_iterations && options.seam_weight > 0; ++it) {
+    std::size_t changed = 0;
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (cand[f].size() < 2) continue;
+      double best = 1e300;
+      int label = R.faces[f].view;
+      for (const Candidate& c : cand[f]) {
+        double e = -std::log(c.score / best_score[f]);
+        for (int n : nbr[f]) {
+          if (n >= 0 && R.faces[static_cast<std::size_t>(n)].view >= 0 &&
+              R.faces[static_cast<std::size_t>(n)].view != c.view) {
+            e += options.seam_weight;
+          }
+        }
+        if (e < best - 1e-12) best = e, label = c.view;
+      }
+      if (label != R.faces[f].view) ++changed, R.faces[f].view = label;
+    }
+    if (changed == 0) break;
+  }
+  for (std::size_t f = 0; f < nf; ++f) {
+    MosaicFace& F = R.faces[f];
+    if (F.view < 0) continue;
+    for (const Candidate& c : cand[f]) {
+      if (c.view == F.view) F.score = c.score;
+    }
+    ++R.views[static_cast<std::size_t>(F.view)].faces;
+    for (int i = 0; i < 3; ++i) {
+      const int n = nbr[f][static_cast<std::size_t>(i)];
+      if (n < 0 || static_cast<std::size_t>(n) < f) continue;
+      ++R.summary.interior_edges;
+      const int nvw = R.faces[static_cast<std::size_t>(n)].view;
+      if (nvw >= 0 && nvw != F.view) ++R.summary.seam_edges;
+    }
+  }
+  R.summary.seconds.labelling = Since(t_label);
+
+  // ---- Feathering weights per vertex: the views of the incident faces by
+  // area, smoothed over feather_rings one-rings.
+  std::vector<ViewWeights> vw(nv);
+  {
+    std::vector<std::map<int, double>> acc(nv);
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (R.faces[f].view < 0) continue;
+      const double a = model.FaceArea(static_cast<int>(f));
+      for (int i = 0; i < 3; ++i) acc[static_cast<std::size_t>(model.faces[f][i])][R.faces[f].view] += a;
+    }
+    for (std::size_t v = 0; v < nv; ++v) vw[v] = Strongest(acc[v]);
+    std::vector<std::vector<int>> ring(nv);
+    for (const Face& F : model.faces) {
+      for (int i = 0; i < 3; ++i) {
+        ring[static_cast<std::size_t>(F[i])].push_back(F[(i + 1) % 3]);
+        ring[static_cast<std::size_t>(F[i])].push_back(F[(i + 2) % 3]);
+      }
+    }
+    for (auto& r : ring) {
+      std::sort(r.begin(), r.end());
+      r.erase(std::unique(r.begin(), r.end()), r.end());
+    }
+    for (int step = 0; step < options.feather_rings; ++step) {
+      std::vector<ViewWeights> next(nv);
+      for (std::size_t v = 0; v < nv; ++v) {
+        std::map<int, double> sum;
+        auto add = [&](const ViewWeights& w) {
+          for (int i = 0; i < kMaxViewsPerVertex; ++i) {
+            if (w.view[static_cast<std::size_t>(i)] >= 0)
+              sum[w.view[static_cast<std::size_t>(i)]] += w.weight[static_cast<std::size_t>(i)];
+          }
+        };
+        add(vw[v]);
+        for (int n : ring[v]) add(vw[static_cast<std::size_t>(n)]);
+        next[v] = Strongest(sum);
+      }
+      vw.swap(next);
+    }
+  }
+
+  // ---- Atlas layout.
+  progress.Update(0.3, "packing the atlas");
+  double texel = options.texel_size;
+  std::vector<Chart> charts(nf);
+  std::vector<int> order;
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (R.faces[f].view >= 0) order.push_back(static_cast<int>(f));
+  }
+  int atlas_w = 0, atlas_h = 0;
+  constexpr int kSpare = 4;  // a flat cell for untextured faces
+  for (int attempt = 0;; ++attempt) {
+    double area = 0;
+    int widest = kSpare;
+    for (int f : order) {
+      charts[static_cast<std::size_t>(f)] = FlatChart(model, f, texel);
+      const Chart& c = charts[static_cast<std::size_t>(f)];
+      area += static_cast<double>(c.w) * c.h;
+      widest = std::max(widest, c.w);
+    }
+    std::sort(order.begin(), order.end(), [&](int a, int b) {
+      const Chart &ca = charts[static_cast<std::size_t>(a)], &cb = charts[static_cast<std::size_t>(b)];
+      return ca.h != cb.h ? ca.h > cb.h : a < b;
+    });
+    atlas_w = std::max(widest, static_cast<int>(std::ceil(std::sqrt(area * 1.05 + kSpare * kSpare))));
+    atlas_w = (atlas_w + 3) / 4 * 4;
+    atlas_h = PackShelves(charts, order, atlas_w) + kSpare;
+    if (atlas_w <= options.max_atlas_size && atlas_h <= options.max_atlas_size) break;
+    if (attempt > 30) throw std::runtime_error("the photomosaic atlas does not fit in max_atlas_size");
+    texel *= 1.25;
+  }
+  R.summary.texel_size = texel;
+  const int spare_y = atlas_h - kSpare;
+  {
+    double used = 0;
+    for (int f : order)
+      used += static_cast<double>(charts[static_cast<std::size_t>(f)].w) * charts[static_cast<std::size_t>(f)].h;
+    R.summary.atlas_fill = used / (static_cast<double>(atlas_w) * atlas_h);
+  }
+  R.corners.assign(nf, {});
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (R.faces[f].view < 0) {
+      // Untextured: all corners on the spare cell's centre (filled grey).
+      for (auto& c : R.corners[f]) c = Eigen::Vector2f(kSpare / 2.0f, static_cast<float>(spare_y) + kSpare / 2.0f);
+      continue;
+    }
+    R.summary.textured_area += model.FaceArea(static_cast<int>(f));
+    const Chart& c = charts[f];
+    for (int i = 0; i < 3; ++i) {
+      R.corners[f][static_cast<std::size_t>(i)] =
+          (c.local[static_cast<std::size_t>(i)] + Eigen::Vector2d(c.x, c.y)).cast<float>();
+    }
+  }
+
+  // Which faces each view textures (its own faces and those blending into it).
+  std::vector<std::vector<int>> view_faces(static_cast<std::size_t>(nviews));
+  std::vector<std::vector<int>> face_views(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (R.faces[f].view < 0) continue;
+    std::vector<int> vs = {R.faces[f].view};
+    for (int i = 0; i < 3 && options.feather_rings > 0; ++i) {
+      for (int v : vw[static_cast<std::size_t>(model.faces[f][i])].view) {
+        if (v < 0) continue;
+        const bool visible =
+            std::any_of(cand[f].begin(), cand[f].end(), [&](const Candidate& c) { return c.view == v; });
+        if (visible && std::find(vs.begin(), vs.end(), v) == vs.end()) vs.push_back(v);
+      }
+    }
+    for (int v : vs) view_faces[static_cast<std::size_t>(v)].push_back(static_cast<int>(f));
+    face_views[f] = std::move(vs);
+  }
+
+  // ---- Images, one pass per stage, read one ahead of use; decoded images
+  // are kept for the second pass (gains, then texturing) within the budget.
+  std::vector<cv::Mat> cache(static_cast<std::size_t>(nviews));
+  std::size_t cached_bytes = 0;
+  const std::size_t cache_budget = options.normalisation == MosaicNormalisation::kModelAndGains
+                                       ? static_cast<std::size_t>(options.image_cache_mb) << 20
+                                       : 0;
+  auto for_each_image = [&](double p0, double p1, const char* what,
+                            const std::function<void(int, const cv::Mat&)>& fn) {
+    std::future<cv::Mat> next;
+    auto read = [&](int vi) {
+      if (!cache[static_cast<std::size_t>(vi)].empty()) {
+        std::promise<cv::Mat> ready;
+        ready.set_value(cache[static_cast<std::size_t>(vi)]);
+        return ready.get_future();
+      }
+      return std::async(std::launch::async, [&, vi] {
+        return in.read_image(view_keyframe[static_cast<std::size_t>(vi)],
+                             cameras[static_cast<std::size_t>(vi)].bottom());
+      });
+    };
+    if (nviews > 0) next = read(0);
+    for (int vi = 0; vi < nviews; ++vi) {
+      cv::Mat img = next.get();
+      if (vi + 1 < nviews) next = read(vi + 1);
+      if (progress.Cancelled()) {
+        if (next.valid()) next.wait();
+        progress.ThrowIfCancelled();
+      }
+      if (img.empty() || img.cols != W || img.rows != H) {
+        throw std::runtime_error("image of keyframe " + std::to_string(R.views[static_cast<std::size_t>(vi)].keyframe) +
+                                 " is not " + std::to_string(W) + "x" + std::to_string(H));
+      }
+      const std::size_t bytes = img.total() * img.elemSize();
+      if (cache[static_cast<std::size_t>(vi)].empty() && cached_bytes + bytes <= cache_budget) {
+        cache[static_cast<std::size_t>(vi)] = img;
+        cached_bytes += bytes;
+      }
+      fn(vi, img);
+      progress.Update(p0 + (p1 - p0) * (vi + 1) / nviews,
+                      std::string(what) + " " + std::to_string(vi + 1) + "/" + std::to_string(nviews));
+    }
+  };
+  int channels = 0;
+  auto check_channels = [&](const cv::Mat& img) {
+    if (channels == 0) channels = img.channels();
+    if (img.channels() != channels || (channels != 1 && channels != 3)) {
+      throw std::runtime_error("the images mix channel counts (or have neither 1 nor 3 channels)");
+    }
+  };
+
+  // ---- Gains: per image, from the faces several images see (robust least
+  // squares on ln values, a prior holding ln gain near 0).
+  const auto t_gain = Clock::now();
+  if (options.normalisation == MosaicNormalisation::kModelAndGains) {
+    // Per view, the faces it sees and is a candidate for (for the overlaps).
+    std::vector<std::vector<std::pair<int, int>>> cand_of_view(static_cast<std::size_t>(nviews));  // (face, slot)
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (cand[f].size() < 2) continue;
+      for (std::size_t s = 0; s < cand[f].size(); ++s) {
+        cand_of_view[static_cast<std::size_t>(cand[f][s].view)].emplace_back(static_cast<int>(f), static_cast<int>(s));
+      }
+    }
+    for_each_image(0.3, 0.6, "gains: image", [&](int vi, const cv::Mat& img) {
+      check_channels(img);
+      const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
+      const auto& list = cand_of_view[static_cast<std::size_t>(vi)];
+      arena.execute([&] {
+        tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
+          const auto [f, slot] = list[i];
+          double sum = 0;
+          int n = 0;
+          for (const Eigen::Vector3d& p : FaceSamples(model, f)) {
+            Eigen::Vector2d uv;
+            Eigen::Vector3d pc;
+            float px[3];
+            if (!cam.Project(p, &uv, &pc) || !Sample(img, uv.x(), uv.y(), px)) continue;
+            normalise(cam, pc, model.face_normals[static_cast<std::size_t>(f)], uv, px, channels);
+            float lum = 0;
+            for (int c = 0; c < channels; ++c) lum += px[c];
+            sum += lum / channels;
+            ++n;
+          }
+          cand[static_cast<std::size_t>(f)][static_cast<std::size_t>(slot)].value =
+              n == kSamples ? static_cast<float>(sum / n) : 0.0f;
+        });
+      });
+    });
+    // Residuals ln g_v + ln a_fv - ln g_w - ln a_fw against the face's chosen view w.
+    struct Pair {
+      int v, w;
+      double d;
+    };
+    std::vector<Pair> pairs;
+    for (std::size_t f = 0; f < nf; ++f) {
+      const int w = R.faces[f].view;
+      if (w < 0 || cand[f].size() < 2) continue;
+      float aw = 0;
+      for (const Candidate& c : cand[f]) {
+        if (c.view == w) aw = c.value;
+      }
+      if (!(aw > 0.01f)) continue;
+      for (const Candidate& c : cand[f]) {
+        if (c.view != w && c.value > 0.01f) pairs.push_back({c.view, w, std::log(c.value / aw)});
+      }
+    }
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(nviews);
+    const double prior = 1.0 / (options.gain_prior_sigma * options.gain_prior_sigma);
+    constexpr double kHuber = 0.1;  // ln units: shadows and misregistered edges are outliers
+    for (int irls = 0; irls < 5 && !pairs.empty(); ++irls) {
+      std::vector<Eigen::Triplet<double>> trip;
+      Eigen::VectorXd rhs = Eigen::VectorXd::Zero(nviews);
+      for (int v = 0; v < nviews; ++v) trip.emplace_back(v, v, prior);
+      for (const Pair& p : pairs) {
+        const double r = x[p.v] - x[p.w] + p.d;
+        const double wt = std::abs(r) <= kHuber ? 1.0 : kHuber / std::abs(r);
+        trip.emplace_back(p.v, p.v, wt);
+        trip.emplace_back(p.w, p.w, wt);
+        trip.emplace_back(p.v, p.w, -wt);
+        trip.emplace_back(p.w, p.v, -wt);
+        rhs[p.v] -= wt * p.d;
+        rhs[p.w] += wt * p.d;
+      }
+      Eigen::SparseMatrix<double> A(nviews, nviews);
+      A.setFromTriplets(trip.begin(), trip.end());
+      Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+      if (solver.info() != Eigen::Success) throw std::runtime_error("gain normalisation: the normal equations failed");
+      x = solver.solve(rhs);
+    }
+    std::vector<double> gains;
+    for (int v = 0; v < nviews; ++v) {
+      R.views[static_cast<std::size_t>(v)].gain = std::exp(x[v]);
+      gains.push_back(R.views[static_cast<std::size_t>(v)].gain);
+    }
+    R.summary.gain_min = *std::min_element(gains.begin(), gains.end());
+    R.summary.gain_max = *std::max_element(gains.begin(), gains.end());
+    R.summary.gain_median = Percentile(gains, 0.5);
+  }
+  R.summary.seconds.gains = Since(t_gain);
+
+  // ---- Texturing: every texel of every face from the views blending there.
+  const auto t_tex = Clock::now();
+  const double p_tex0 = options.normalisation == MosaicNormalisation::kModelAndGains ? 0.6 : 0.3;
+  constexpr int kMaxChannels = 3;
+  cv::Mat sum(atlas_h, atlas_w, CV_32FC4, cv::Scalar::all(0));  // channels 0..2: weighted values, 3: weight
+  // The point of M and the face's barycentrics at a texel centre of face f.
+  auto texel_point = [&](std::size_t f, int i, int j, bool* inside) {
+    const Chart& c = charts[f];
+    const Eigen::Vector3d b = Barycentric(c.local, Eigen::Vector2d(i + 0.5, j + 0.5), inside);
+    const Face& F = model.faces[f];
+    const Eigen::Vector3d p = b[0] * model.vertices[static_cast<std::size_t>(F[0])] +
+                              b[1] * model.vertices[static_cast<std::size_t>(F[1])] +
+                              b[2] * model.vertices[static_cast<std::size_t>(F[2])];
+    return std::make_pair(p, b);
+  };
+  for_each_image(p_tex0, 0.9, "texturing: image", [&](int vi, const cv::Mat& img) {
+    check_channels(img);
+    const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
+    const float gain = static_cast<float>(R.views[static_cast<std::size_t>(vi)].gain);
+    const auto& list = view_faces[static_cast<std::size_t>(vi)];
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t li) {
+        const auto f = static_cast<std::size_t>(list[li]);
+        const Chart& c = charts[f];
+        const Face& F = model.faces[f];
+        const bool own = R.faces[f].view == vi;
+        const bool blend = face_views[f].size() > 1;
+        float wc[3];
+        for (int k = 0; k < 3; ++k) wc[k] = vw[static_cast<std::size_t>(F[k])].Of(vi);
+        for (int j = 0; j < c.h; ++j) {
+          auto* row = sum.ptr<cv::Vec4f>(c.y + j) + c.x;
+          for (int i = 0; i < c.w; ++i) {
+            bool inside;
+            const auto [p, b] = texel_point(f, i, j, &inside);
+            // Feathered weight; a face no other view blends into takes its own view alone.
+            float w = blend ? static_cast<float>(b[0] * wc[0] + b[1] * wc[1] + b[2] * wc[2]) : 1.0f;
+            if (own) w = std::max(w, 1e-3f);  // the chosen view always counts a little
+            if (w <= 0) continue;
+            Eigen::Vector2d uv;
+            Eigen::Vector3d pc;
+            float px[kMaxChannels];
+            if (!cam.Project(p, &uv, &pc) || !Sample(img, uv.x(), uv.y(), px)) continue;
+            normalise(cam, pc, model.face_normals[f], uv, px, channels);
+            cv::Vec4f& s = row[i];
+            for (int k = 0; k < channels; ++k) s[k] += w * gain * px[k];
+            s[3] += w;
+          }
+        }
+      });
+    });
+  });
+  R.channels = channels > 0 ? channels : 1;
+  R.atlas.create(atlas_h, atlas_w, R.channels == 3 ? CV_8UC3 : CV_8UC1);
+  R.atlas.setTo(cv::Scalar::all(128));
+  std::vector<float> face_value(nf * kMaxChannels, 0.0f);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, nf, [&](std::size_t f) {
+      if (R.faces[f].view < 0) return;
+      const Chart& c = charts[f];
+      double acc[kMaxChannels] = {0, 0, 0};
+      int n = 0;
+      // Mean over the texels inside the triangle (for the PLY and empty texels).
+      for (int j = 0; j < c.h; ++j) {
+        const auto* row = sum.ptr<cv::Vec4f>(c.y + j) + c.x;
+        for (int i = 0; i < c.w; ++i) {
+          bool inside;
+          Barycentric(c.local, Eigen::Vector2d(i + 0.5, j + 0.5), &inside);
+          if (!inside || row[i][3] <= 0) continue;
+          for (int k = 0; k < R.channels; ++k) acc[k] += row[i][k] / row[i][3];
+          ++n;
+        }
+      }
+      for (int k = 0; k < R.channels; ++k)
+        face_value[f * kMaxChannels + static_cast<std::size_t>(k)] = n ? static_cast<float>(acc[k] / n) : 0.5f;
+      float lum = 0;
+      for (int k = 0; k < R.channels; ++k) lum += face_value[f * kMaxChannels + static_cast<std::size_t>(k)];
+      R.faces[f].albedo = lum / static_cast<float>(R.channels);
+      for (int j = 0; j < c.h; ++j) {
+        const auto* row = sum.ptr<cv::Vec4f>(c.y + j) + c.x;
+        std::uint8_t* out =
+            R.atlas.ptr<std::uint8_t>(c.y + j) + static_cast<std::size_t>(c.x) * static_cast<std::size_t>(R.channels);
+        for (int i = 0; i < c.w; ++i) {
+          for (int k = 0; k < R.channels; ++k) {
+            const float v =
+                row[i][3] > 0 ? row[i][k] / row[i][3] : face_value[f * kMaxChannels + static_cast<std::size_t>(k)];
+            out[i * R.channels + k] = static_cast<std::uint8_t>(std::clamp(v * 255.0f + 0.5f, 0.0f, 255.0f));
+          }
+        }
+      }
+    });
+  });
+  // Vertex values: area-weighted mean of the incident textured faces.
+  R.vertex_values.assign(nv * static_cast<std::size_t>(R.channels), 0.5f);
+  {
+    std::vector<double> acc(nv * kMaxChannels, 0.0), wsum(nv, 0.0);
+    for (std::size_t f = 0; f < nf; ++f) {
+      if (R.faces[f].view < 0) continue;
+      const double a = model.FaceArea(static_cast<int>(f));
+      for (int i = 0; i < 3; ++i) {
+        const auto v = static_cast<std::size_t>(model.faces[f][i]);
+        wsum[v] += a;
+        for (int k = 0; k < R.channels; ++k)
+          acc[v * kMaxChannels + static_cast<std::size_t>(k)] +=
+              a * face_value[f * kMaxChannels + static_cast<std::size_t>(k)];
+      }
+    }
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (wsum[v] <= 0) continue;
+      for (int k = 0; k < R.channels; ++k) {
+        R.vertex_values[v * static_cast<std::size_t>(R.channels) + static_cast<std::size_t>(k)] =
+            static_cast<float>(acc[v * kMaxChannels + static_cast<std::size_t>(k)] / wsum[v]);
+      }
+    }
+  }
+  for (const MosaicFace& F : R.faces) R.summary.faces_textured += F.view >= 0 ? 1 : 0;
+  for (const MosaicView& v : R.views) R.summary.views_used += v.faces > 0 ? 1 : 0;
+  R.summary.faces = nf;
+  R.summary.seconds.texturing = Since(t_tex);
+
+  // ---- Against the true albedo: the estimate (before 8-bit rounding) at up
+  // to truth_samples texels inside each face.
+  const auto t_score = Clock::now();
+  if (truth) {
+    progress.Update(0.9, "scoring against the true albedo");
+    arena.execute([&] {
+      tbb::parallel_for(std::size_t{0}, nf, [&](std::size_t f) {
+        if (R.faces[f].view < 0) return;
+        const Chart& c = charts[f];
+        std::vector<std::pair<int, int>> inside_texels;
+        for (int j = 0; j < c.h; ++j) {
+          for (int i = 0; i < c.w; ++i) {
+            bool inside;
+            Barycentric(c.local, Eigen::Vector2d(i + 0.5, j + 0.5), &inside);
+            if (inside && sum.ptr<cv::Vec4f>(c.y + j)[c.x + i][3] > 0) inside_texels.emplace_back(i, j);
+          }
+        }
+        if (inside_texels.empty()) return;
+        const std::size_t n = std::min(inside_texels.size(), static_cast<std::size_t>(options.truth_samples));
+        const MosaicCamera& cam = cameras[static_cast<std::size_t>(R.faces[f].view)];
+        const double footprint =
+            std::max(texel, (cam.centre() - model.FaceCentroid(static_cast<int>(f))).norm() / cam.intrinsics().fx);
+        double err = 0, est_sum = 0, true_sum = 0;
+        for (std::size_t s = 0; s < n; ++s) {
+          const auto [i, j] = inside_texels[s * inside_texels.size() / n];
+          bool inside;
+          const Eigen::Vector3d p = texel_point(f, i, j, &inside).first;
+          const cv::Vec4f& t = sum.ptr<cv::Vec4f>(c.y + j)[c.x + i];
+          float est = 0;
+          for (int k = 0; k < R.channels; ++k) est += t[k] / t[3];
+          est /= static_cast<float>(R.channels);
+          const float a = truth->AlbedoAt(p, footprint);
+          err += std::abs(est - a);
+          est_sum += est;
+          true_sum += a;
+        }
+        R.faces[f].error = static_cast<float>(err / static_cast<double>(n));
+        R.faces[f].mean_error = static_cast<float>(std::abs(est_sum - true_sum) / static_cast<double>(n));
+        R.faces[f].truth = static_cast<float>(true_sum / static_cast<double>(n));
+      });
+    });
+    std::vector<double> e, me;
+    for (const MosaicFace& F : R.faces) {
+      if (std::isnan(F.error)) continue;
+      e.push_back(F.error);
+      me.push_back(F.mean_error);
+    }
+    R.summary.faces_scored = e.size();
+    if (!e.empty()) {
+      R.summary.error_median = Percentile(e, 0.5);
+      R.summary.error_p95 = Percentile(e, 0.95);
+      R.summary.mean_error_median = Percentile(me, 0.5);
+      R.summary.mean_error_p95 = Percentile(me, 0.95);
+    }
+  }
+  R.summary.seconds.scoring = Since(t_score);
+  R.summary.seconds.total = Since(t_start);
+  progress.Update(1.0, "photomosaic done");
+  return R;
+}
+
+}  // namespace hull
