@@ -173,6 +173,9 @@ SonarPanel::SonarPanel(JobRunner* jobs, QWidget* parent) : QWidget(parent), jobs
   feature_plot_->setObjectName(QStringLiteral("sonarFeaturePlot"));
   position_plot_->setObjectName(QStringLiteral("sonarPositionPlot"));
   orientation_plot_->setObjectName(QStringLiteral("sonarOrientationPlot"));
+  // Two rows of plots: each may be smaller than a plot's own minimum, so the
+  // dock keeps its height.
+  for (PlotWidget* plot : {feature_plot_, position_plot_, orientation_plot_}) plot->setMinimumSize(160, 90);
   grid->addWidget(feature_plot_, 0, 0, 1, 2);
   grid->addWidget(position_plot_, 1, 0);
   grid->addWidget(orientation_plot_, 1, 1);
@@ -186,7 +189,6 @@ SonarPanel::SonarPanel(JobRunner* jobs, QWidget* parent) : QWidget(parent), jobs
   outer->addWidget(split, 1);
   status_ = new QLabel(this);
   status_->setObjectName(QStringLiteral("sonarStatus"));
-  status_->setWordWrap(true);
   outer->addWidget(status_);
 
   timer_ = new QTimer(this);
@@ -220,6 +222,8 @@ SonarPanel::SonarPanel(JobRunner* jobs, QWidget* parent) : QWidget(parent), jobs
     connect(box, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] { Rerun(); });
   }
   connect(smoother_, &QCheckBox::toggled, this, [this] { Rerun(); });
+  // In the dock the fan is small: it opens on the ranges where the features are.
+  zoom_->setCurrentIndex(1);
   UpdateControls();
   UpdatePlots();
 }

@@ -148,15 +148,39 @@ void SonarFanView::UpdateWindow() {
   r1_ = std::min(s.range_max, hi + margin);
 }
 
-double SonarFanView::LegendHeight() const {
+double SonarFanView::LegendWidth() const {
+  const QFontMetricsF fm(font());
+  double w = 0;
+  for (const QString& t : LegendTexts(ellipse_scale_)) w = std::max(w, fm.horizontalAdvance(t));
+  return 8 + 20 + w + 8;
+}
+
+double SonarFanView::LegendRowsHeight() const {
   const std::vector<QPointF> at = LegendLayout(LegendTexts(ellipse_scale_), QFontMetricsF(font()), width());
   return (at.back().y() + 1) * kLegendRow + 8;
 }
 
-QRectF SonarFanView::FanRect() const {
-  return QRectF(kMarginLeft, kMarginTop, std::max(1.0, width() - kMarginLeft - kMarginRight),
-                std::max(1.0, height() - kMarginTop - LegendHeight() - 8));
+QRectF SonarFanView::RectFor(bool side) const {
+  const double left = side ? LegendWidth() + kMarginLeft : kMarginLeft;
+  const double bottom = side ? 0 : LegendRowsHeight();
+  return QRectF(left, kMarginTop, std::max(1.0, width() - left - kMarginRight),
+                std::max(1.0, height() - kMarginTop - bottom - 8));
 }
+
+// The legend in a column on the left when that leaves the fan larger than
+// rows of it below do.
+bool SonarFanView::LegendAtSide() const {
+  if (!HasGeometry()) return false;
+  const SonarImageFormat format = run_->sequence->image ? *run_->sequence->image : SonarImageFormat();
+  const SonarSensor& sensor = run_->sequence->sensor;
+  const double side = SonarFanGeometry(sensor, format, r0_, r1_, RectFor(true)).pixels_per_metre();
+  const double below = SonarFanGeometry(sensor, format, r0_, r1_, RectFor(false)).pixels_per_metre();
+  return side > 1.05 * below;
+}
+
+double SonarFanView::LegendHeight() const { return LegendAtSide() ? 0 : LegendRowsHeight(); }
+
+QRectF SonarFanView::FanRect() const { return RectFor(LegendAtSide()); }
 
 bool SonarFanView::HasGeometry() const { return run_ && r1_ > r0_; }
 
@@ -281,10 +305,12 @@ void SonarFanView::DrawGrid(QPainter& p, const SonarFanGeometry& g) {
   p.drawPolygon(QPolygonF(QVector<QPointF>(outline.begin(), outline.end())));
   // Azimuth lines every 5 or 10 degrees (and the edges), labelled beyond the far arc.
   const double deg = h * 180 / M_PI;
-  const double step = deg > 25 ? 10 : 5;
+  // Labels at least 30 pixels apart along the far arc.
+  double step = 5;
+  while (step < 45 && g.range_max() * g.pixels_per_metre() * step * M_PI / 180 < 30) step *= 2;
   std::vector<double> azimuths;
   for (double a = -std::floor(deg / step) * step; a <= deg + 1e-9; a += step) azimuths.push_back(a);
-  if (deg - azimuths.back() > step * 0.3) {
+  if ((deg - azimuths.back()) * M_PI / 180 * g.range_max() * g.pixels_per_metre() >= 24) {
     azimuths.insert(azimuths.begin(), -deg);
     azimuths.push_back(deg);
   }
@@ -350,11 +376,20 @@ void SonarFanView::DrawFrame(QPainter& p, const SonarFanGeometry& g, const Sonar
 }
 
 void SonarFanView::DrawLegend(QPainter& p) {
-  const double top = height() - LegendHeight();
-  p.fillRect(QRectF(0, top, width(), height() - top), kBackground.darker(130));
   const QFontMetricsF fm(font());
   const QStringList texts = LegendTexts(ellipse_scale_);
-  const std::vector<QPointF> at = LegendLayout(texts, fm, width());
+  std::vector<QPointF> at;
+  double top = 0;
+  if (LegendAtSide()) {
+    // One entry a row, in the left column, from the bottom up.
+    top = height() - texts.size() * kLegendRow - 8;
+    p.fillRect(QRectF(0, top - 4, LegendWidth(), height() - top + 4), kBackground.darker(130));
+    for (int i = 0; i < texts.size(); ++i) at.emplace_back(8, i);
+  } else {
+    top = height() - LegendHeight();
+    p.fillRect(QRectF(0, top, width(), height() - top), kBackground.darker(130));
+    at = LegendLayout(texts, fm, width());
+  }
   const QColor sample = FeatureColour(3);
   for (int i = 0; i < texts.size(); ++i) {
     const QPointF c(at[static_cast<std::size_t>(i)].x() + 8,

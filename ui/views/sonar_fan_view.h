@@ -50,7 +50,7 @@ class SonarFanView : public QWidget {
   Counts counts() const { return counts_; }
 
   QSize sizeHint() const override { return {520, 460}; }
-  QSize minimumSizeHint() const override { return {260, 240}; }
+  QSize minimumSizeHint() const override { return {200, 120}; }
 
   // The colour of a feature's prediction and association lines.
   static QColor FeatureColour(std::int64_t id);
@@ -61,6 +61,10 @@ class SonarFanView : public QWidget {
 
  private:
   QRectF FanRect() const;
+  QRectF RectFor(bool legend_at_side) const;
+  bool LegendAtSide() const;
+  double LegendWidth() const;
+  double LegendRowsHeight() const;
   double LegendHeight() const;
   void UpdateWindow();  // the zoom's range window
   const QImage& FanImage(const SonarFanGeometry& g);

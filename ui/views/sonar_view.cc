@@ -23,7 +23,7 @@ SonarView::SonarView(QWidget* parent) : QWidget(parent), impl_(std::make_unique<
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   vtk_widget_->interactor()->SetInteractorStyle(style);
   layout->addWidget(vtk_widget_);
-  setMinimumSize(240, 180);
+  setMinimumSize(240, 120);
 }
 
 SonarView::~SonarView() = default;
