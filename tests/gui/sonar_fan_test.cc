@@ -18,6 +18,7 @@
 
 using namespace hull::ui;
 using hull::ui::testing::MatchesBaseline;
+using hull::ui::testing::OutputDir;
 using hull::ui::testing::Settle;
 
 namespace {
@@ -172,6 +173,9 @@ class SonarFanTest : public QObject {
     QCOMPARE(s.estimated, static_cast<int>(run->smoother->result.features.size()));
     QVERIFY(s.feature_ellipsoids > 0);
     QCOMPARE(s.pose_ellipsoids, 8);
+    Settle(&panel);
+    QTest::qWait(200);
+    QVERIFY(panel.view()->Grab().save(OutputDir() + QStringLiteral("/sonar_smoother_3d.png")));
     panel.estimatesBox()->setCurrentIndex(0);
     QVERIFY(!panel.view()->counts().smoother);
     QCOMPARE(panel.view()->counts().estimated, static_cast<int>(run->result.steps.back().features.size()));
@@ -198,6 +202,27 @@ class SonarFanTest : public QObject {
     Settle(&view);
     QVERIFY2(MatchesBaseline(view.grab().toImage(), QStringLiteral("view_sonar_fan_zoom"), &message),
              qPrintable(message));
+  }
+
+  // The user guide's picture of the fan (docs/images/sonar-fan.png is a
+  // copy of user_guide_sonar_fan.png): the demo prism at step 12, around the
+  // features.
+  void userGuideShotOfTheFan() {
+    JobRunner jobs;
+    SonarPanel panel(&jobs);
+    panel.OpenDemo(QStringLiteral("prism"));
+    HI_WAIT_IDLE(&jobs, 120000);
+    QVERIFY(panel.run() && panel.run()->from_images);
+    SonarFanView view;
+    view.setFixedSize(640, 520);
+    view.SetRun(panel.run());
+    view.SetStep(12);
+    view.SetZoom(SonarFanView::Zoom::kFeatures);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    Settle(&view);
+    QVERIFY(view.counts().predictions > 0 && view.counts().detections > 0);
+    QVERIFY(view.grab().toImage().save(OutputDir() + QStringLiteral("/user_guide_sonar_fan.png")));
   }
 };
 
