@@ -179,6 +179,16 @@ class SonarFanTest : public QObject {
     panel.estimatesBox()->setCurrentIndex(0);
     QVERIFY(!panel.view()->counts().smoother);
     QCOMPARE(panel.view()->counts().estimated, static_cast<int>(run->result.steps.back().features.size()));
+
+    // The given measurements instead of the images: runs again, no frames to draw.
+    QVERIFY(panel.sourceBox()->isEnabled());
+    panel.sourceBox()->setCurrentIndex(1);
+    HI_WAIT_IDLE(&jobs, 120000);
+    QVERIFY(panel.run() != run && !panel.run()->from_images && panel.run()->frames.empty());
+    Settle(&panel);
+    QCOMPARE(panel.fanView()->counts().detections, 0);
+    QCOMPARE(panel.fanView()->counts().predictions, 0);
+    QVERIFY(panel.fanView()->counts().rings > 0);  // the fan's grid still
   }
 
   void fanScreenshot() {

@@ -339,8 +339,9 @@ void SonarPanel::UpdateControls() {
     const bool images =
         run_ && run_->sequence->image && run_->input && (!run_->input->directory.empty() || run_->input->images);
     const bool measurements = run_ && run_->sequence->has_measurements;
+    // A sequence that offers one source only leaves the choice as it was (the next one may offer both).
     source_->setEnabled(images && measurements);
-    if (run_) source_->setCurrentIndex(run_->from_images ? 0 : 1);
+    if (images && measurements) source_->setCurrentIndex(run_->from_images ? 0 : 1);
     auto* model = qobject_cast<QStandardItemModel*>(estimates_->model());
     if (model) model->item(1)->setEnabled(run_ && run_->smoother);
   }
