@@ -8,6 +8,7 @@
 #include <QComboBox>
 #include <QPushButton>
 #include <QSlider>
+#include <QTemporaryDir>
 
 #include "gui_test_support.h"
 #include "simulate/sonar_image_simulator.h"
@@ -189,6 +190,25 @@ class SonarFanTest : public QObject {
     QCOMPARE(panel.fanView()->counts().detections, 0);
     QCOMPARE(panel.fanView()->counts().predictions, 0);
     QVERIFY(panel.fanView()->counts().rings > 0);  // the fan's grid still
+  }
+
+  void aFolderWithImagesAndASceneOpens() {
+    hull::SonarImageSimulationOptions o = hull::SonarImagePreset("tank", 2);
+    o.sequence.num_steps = 4;
+    o.format.range_bins = 128;
+    o.format.beams = 48;
+    QTemporaryDir dir;
+    const std::string path = QFile::encodeName(dir.filePath(QStringLiteral("tank"))).toStdString();
+    hull::WriteSonarImageSimulation(hull::SimulateSonarImages(o), path);
+    JobRunner jobs;
+    SonarPanel panel(&jobs);
+    panel.OpenSequence(dir.filePath(QStringLiteral("tank")));
+    HI_WAIT_IDLE(&jobs, 60000);
+    const auto run = panel.run();
+    QVERIFY(run && run->from_images && run->scene && run->scene->num_faces() > 0);
+    QCOMPARE(static_cast<int>(run->frames.size()), 4);
+    for (const SonarFrame& f : run->frames) QVERIFY(f.image.rows == 128 && f.image.cols == 48);
+    QCOMPARE(run->input->directory, path);
   }
 
   void fanScreenshot() {
