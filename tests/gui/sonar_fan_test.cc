@@ -190,6 +190,7 @@ class SonarFanTest : public QObject {
     QCOMPARE(panel.fanView()->counts().detections, 0);
     QCOMPARE(panel.fanView()->counts().predictions, 0);
     QVERIFY(panel.fanView()->counts().rings > 0);  // the fan's grid still
+    QVERIFY(panel.fanView()->grab().toImage().save(OutputDir() + QStringLiteral("/sonar_fan_no_images.png")));
   }
 
   void aFolderWithImagesAndASceneOpens() {

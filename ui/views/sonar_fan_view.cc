@@ -270,13 +270,11 @@ void SonarFanView::paintEvent(QPaintEvent*) {
   QString title = QStringLiteral("Fan · step %1 / %2").arg(step_).arg(run_->steps() - 1);
   if (has_frame) {
     title += QStringLiteral(" · %1 detections · %2 predicted").arg(counts_.detections).arg(counts_.predictions);
+  } else {
+    title += QStringLiteral(" · no images (measurements.csv)");
   }
   p.drawText(QRectF(8, 4, width() - 16, 18), Qt::AlignLeft | Qt::AlignVCenter, title);
   p.setFont(font());
-  if (!has_frame) {
-    p.drawText(QRectF(8, 20, width() - 16, 18), Qt::AlignLeft | Qt::AlignVCenter,
-               QStringLiteral("Features from measurements.csv: no images to show"));
-  }
   DrawLegend(p);
 }
 
@@ -310,7 +308,7 @@ void SonarFanView::DrawGrid(QPainter& p, const SonarFanGeometry& g) {
   while (step < 45 && g.range_max() * g.pixels_per_metre() * step * M_PI / 180 < 30) step *= 2;
   std::vector<double> azimuths;
   for (double a = -std::floor(deg / step) * step; a <= deg + 1e-9; a += step) azimuths.push_back(a);
-  if ((deg - azimuths.back()) * M_PI / 180 * g.range_max() * g.pixels_per_metre() >= 24) {
+  if ((deg - azimuths.back()) * M_PI / 180 * g.range_max() * g.pixels_per_metre() >= 40) {
     azimuths.insert(azimuths.begin(), -deg);
     azimuths.push_back(deg);
   }
