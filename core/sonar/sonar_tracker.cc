@@ -74,8 +74,8 @@ SonarTrackStep SonarTracker::Step(SonarEkf& ekf, const SonarControl* control,
     in.noise.push_back(d.covariance);
   }
   std::vector<int> paired(candidates.size(), -1);
+  if (!candidates.empty()) ekf.PredictMeasurements(candidates, &in.predicted, &in.covariance);
   if (!candidates.empty() && m > 0) {
-    ekf.PredictMeasurements(candidates, &in.predicted, &in.covariance);
     if (options_.joint_compatibility) {
       const Association a = JointCompatibility(in, options_.gate_probability, options_.max_jcbb_nodes);
       paired = a.detection;
@@ -101,6 +101,15 @@ SonarTrackStep SonarTracker::Step(SonarEkf& ekf, const SonarControl* control,
     out.feature[j] = id;
     out.pairing[j] = how;
   };
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    SonarPrediction p;
+    p.id = candidates[i];
+    const auto k = static_cast<Eigen::Index>(2 * i);
+    p.z = in.predicted.segment<2>(k);
+    p.covariance = in.covariance.block<2, 2>(k, k);
+    p.detection = paired[i];
+    out.predictions.push_back(p);
+  }
   std::unordered_map<std::int64_t, bool> seen;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     if (paired[i] < 0) continue;
@@ -112,6 +121,20 @@ SonarTrackStep SonarTracker::Step(SonarEkf& ekf, const SonarControl* control,
   // 2. Tentative features: optimal assignment of the remaining detections,
   // each pair's distance that of the feature's best elevation hypothesis.
   const std::vector<std::int64_t> waiting = ekf.PendingIds();
+  std::vector<int> waiting_prediction(waiting.size(), -1);  // index into out.predictions
+  for (std::size_t w = 0; w < waiting.size(); ++w) {
+    const std::vector<SonarEkf::HypothesisPrediction> hs = ekf.PredictPending(waiting[w]);
+    const auto best =
+        std::max_element(hs.begin(), hs.end(), [](const auto& a, const auto& b) { return a.weight < b.weight; });
+    if (best == hs.end() || !InsideImage(sensor, image, best->z[0], best->z[1], 0, 0)) continue;
+    SonarPrediction p;
+    p.id = waiting[w];
+    p.z = best->z;
+    p.covariance = best->S;
+    p.waiting = true;
+    waiting_prediction[w] = static_cast<int>(out.predictions.size());
+    out.predictions.push_back(p);
+  }
   if (!waiting.empty() && m > 0) {
     const double gate = ChiSquareQuantile(options_.gate_probability, 2);
     Eigen::MatrixXd cost =
@@ -133,6 +156,8 @@ SonarTrackStep SonarTracker::Step(SonarEkf& ekf, const SonarControl* control,
     for (std::size_t w = 0; w < waiting.size(); ++w) {
       if (assigned[w] < 0) continue;
       measure(static_cast<std::size_t>(assigned[w]), waiting[w], SonarPairing::kWaiting);
+      if (waiting_prediction[w] >= 0)
+        out.predictions[static_cast<std::size_t>(waiting_prediction[w])].detection = assigned[w];
       seen[waiting[w]] = true;
       ++out.paired_waiting;
     }

@@ -58,8 +58,22 @@ enum class SonarPairing {
   kNew,      // started a new tentative feature
 };
 
+// What the EKF predicted for a feature at a step, before the correction
+// (for display: the fan view draws it with its 2-sigma ellipse).
+struct SonarPrediction {
+  std::int64_t id = 0;
+  Eigen::Vector2d z = Eigen::Vector2d::Zero();               // (range m, azimuth rad)
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // H P H^T, without measurement noise
+  bool waiting = false;  // a tentative feature: its most likely elevation hypothesis
+  int detection = -1;    // the detection paired with it, or -1
+};
+
 struct SonarTrackStep {
   SonarStepEstimate estimate;
+  // The in-state features predicted inside the image (the association's
+  // candidates, in ascending id) and then the waiting ones whose most likely
+  // hypothesis falls inside it.
+  std::vector<SonarPrediction> predictions;
   std::vector<std::int64_t> feature;  // per detection: the feature it measured or started
   std::vector<SonarPairing> pairing;  // per detection
   int candidates = 0;                 // in-state features predicted inside the image

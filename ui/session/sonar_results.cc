@@ -1,19 +1,21 @@
 #include "ui/session/sonar_results.h"
 
 #include <Eigen/Eigenvalues>
+#include <filesystem>
 #include <map>
 #include <utility>
 
+#include "geometry/mesh_io.h"
+#include "simulate/sonar_image_simulator.h"
+#include "sonar/sonar_image_runner.h"
+#include "survey/sonar_image.h"
+
 namespace hull::ui {
 
-SonarRun RunSonarJob(std::shared_ptr<const AcousticSequence> sequence, std::string name, SonarInit init,
-                     Progress& progress) {
-  SonarRun run;
-  run.name = std::move(name);
-  SonarRunOptions options;
-  options.ekf.init = init;
-  options.keep_features = true;
-  run.result = RunSonarSequence(*sequence, options, &progress);
+namespace {
+
+// First estimates and bounds from the run's per-step records.
+void Summarise(SonarRun& run) {
   std::map<std::int64_t, std::pair<Eigen::Vector3d, std::int64_t>> first;
   for (const SonarStepRecord& step : run.result.steps) {
     run.bounds.extend(step.estimate.pose.head<3>());
@@ -28,12 +30,107 @@ SonarRun RunSonarJob(std::shared_ptr<const AcousticSequence> sequence, std::stri
     run.initial.push_back(value.first);
     run.first_step.push_back(value.second);
   }
-  if (sequence->truth) {
-    for (const Vector6d& p : sequence->truth->poses) run.bounds.extend(p.head<3>());
-    for (const Eigen::Vector3d& p : sequence->truth->features) run.bounds.extend(p);
+  if (run.sequence->truth) {
+    for (const Vector6d& p : run.sequence->truth->poses) run.bounds.extend(p.head<3>());
+    for (const Eigen::Vector3d& p : run.sequence->truth->features) run.bounds.extend(p);
   }
-  run.sequence = std::move(sequence);
+  if (run.smoother) {
+    for (const Vector6d& p : run.smoother->result.poses) run.bounds.extend(p.head<3>());
+    for (const SonarSmoothedFeature& f : run.smoother->result.features) run.bounds.extend(f.position);
+  }
+}
+
+}  // namespace
+
+SonarJobInput ReadSonarJobInput(const std::string& directory, const std::string& name) {
+  SonarJobInput in;
+  in.sequence = std::make_shared<const AcousticSequence>(ReadAcousticSequence(directory));
+  in.name = name;
+  in.directory = directory;
+  const std::string scene = (std::filesystem::path(directory) / "truth" / "scene.ply").string();
+  if (std::filesystem::exists(scene)) in.scene = std::make_shared<const TriangleMesh>(LoadMesh(scene));
+  return in;
+}
+
+SonarJobInput SimulateSonarJobInput(const std::string& preset, std::uint64_t seed) {
+  SonarImageSimulation sim = SimulateSonarImages(SonarImagePreset(preset, seed));
+  SonarJobInput in;
+  in.sequence = std::make_shared<const AcousticSequence>(std::move(sim.sequence));
+  in.name = "demo: " + preset;
+  in.images = std::make_shared<const std::vector<cv::Mat>>(std::move(sim.images));
+  in.scene = std::make_shared<const TriangleMesh>(std::move(sim.scene.mesh));
+  return in;
+}
+
+SonarRun RunSonarJob(std::shared_ptr<const SonarJobInput> shared, const SonarJobOptions& options, Progress& progress) {
+  const SonarJobInput& input = *shared;
+  const AcousticSequence& seq = *input.sequence;
+  SonarRun run;
+  run.name = input.name;
+  run.scene = input.scene;
+  const bool images_available = seq.image && (!input.directory.empty() || input.images);
+  run.from_images = options.from_images && images_available;
+  if (!run.from_images && !seq.has_measurements) {
+    throw std::invalid_argument("'" + input.name +
+                                "' has no measurements.csv: its features can only come from its images");
+  }
+  const double ekf_share = options.smoother ? 0.6 : 1.0;
+  std::optional<SonarImageRunResult> images;
+  {
+    SubProgress p(progress, 0.0, ekf_share);
+    if (run.from_images) {
+      SonarImageRunOptions o;
+      o.run.ekf.init = options.init;
+      o.run.keep_features = true;
+      const SonarImageFormat format = *seq.image;
+      std::vector<cv::Mat> kept(static_cast<std::size_t>(seq.num_steps()));
+      const std::function<cv::Mat(int)> read = [&](int k) {
+        cv::Mat m = input.images ? input.images->at(static_cast<std::size_t>(k))
+                                 : ReadSonarImage(SonarImagePath(input.directory, k), format);
+        kept[static_cast<std::size_t>(k)] = m;
+        return m;
+      };
+      images = RunSonarImages(seq, read, o, &p);
+      run.result = images->run;
+      run.frames.resize(images->steps.size());
+      for (std::size_t k = 0; k < images->steps.size(); ++k) {
+        const SonarImageStep& s = images->steps[k];
+        SonarFrame& f = run.frames[k];
+        f.image = kept[k];
+        f.detections = s.detections;
+        f.predictions = s.track.predictions;
+        f.feature = s.track.feature;
+        f.pairing = s.track.pairing;
+      }
+    } else {
+      SonarRunOptions o;
+      o.ekf.init = options.init;
+      o.keep_features = true;
+      run.result = RunSonarSequence(seq, o, &p);
+    }
+  }
+  if (options.smoother) {
+    progress.Update(ekf_share, "running the batch smoother");
+    SubProgress p(progress, ekf_share, 1.0);
+    const std::vector<SonarMeasurement> measurements = images ? AssociatedMeasurements(*images) : seq.measurements;
+    run.smoother = RunSonarSmoother(seq, run.result, measurements, SonarSmootherOptions(),
+                                    images ? &images->truth_of : nullptr, &p);
+  }
+  run.sequence = input.sequence;
+  run.input = std::move(shared);
+  Summarise(run);
   return run;
+}
+
+SonarRun RunSonarJob(std::shared_ptr<const AcousticSequence> sequence, std::string name, SonarInit init,
+                     Progress& progress) {
+  auto in = std::make_shared<SonarJobInput>();
+  in->sequence = std::move(sequence);
+  in->name = std::move(name);
+  SonarJobOptions o;
+  o.init = init;
+  o.from_images = false;
+  return RunSonarJob(std::move(in), o, progress);
 }
 
 Ellipsoid ThreeSigmaEllipsoid(const Eigen::Vector3d& mean, const Eigen::Matrix3d& covariance) {

@@ -1,20 +1,47 @@
 // An acoustic sequence run through the sonar EKF (Mai et al.), as the sonar
 // dock plays it: the core's per-step records plus what the views draw —
 // each feature's first estimate (where it entered the filter), the truth
-// when the sequence has it, and 3-sigma ellipsoids of the covariances.
-// Computed in a job (RunSonarJob), Qt- and VTK-free.
+// when the sequence has it, 3-sigma ellipsoids of the covariances, and, when
+// the features came from the images, every frame of the image chain (the
+// polar image, its detections, the EKF's predictions and the associations);
+// the batch smoother's estimates when it was run; the scene mesh when the
+// sequence has one. Computed in a job (RunSonarJob), Qt- and VTK-free.
 #pragma once
 
 #include <Eigen/Core>
 #include <memory>
+#include <opencv2/core/mat.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "base/progress.h"
+#include "geometry/triangle_mesh.h"
 #include "sonar/sonar_runner.h"
+#include "sonar/sonar_smoother_run.h"
+#include "sonar/sonar_tracker.h"
 #include "survey/acoustic_sequence.h"
 
 namespace hull::ui {
+
+// One step of the image chain, as the fan view draws it.
+struct SonarFrame {
+  cv::Mat image;                             // the polar image (range_bins x beams, 8- or 16-bit)
+  std::vector<SonarDetection> detections;    // the front end's (CFAR) detections
+  std::vector<SonarPrediction> predictions;  // the EKF's, before the correction
+  std::vector<std::int64_t> feature;         // per detection: the feature it measured or started
+  std::vector<SonarPairing> pairing;         // per detection
+};
+
+// What a sonar job reads: the sequence, where its images come from (a
+// folder's images/<step>.png, or in memory for a simulation) and its scene.
+struct SonarJobInput {
+  std::shared_ptr<const AcousticSequence> sequence;
+  std::string name;
+  std::string directory;                               // the sequence folder ("" : in memory)
+  std::shared_ptr<const std::vector<cv::Mat>> images;  // per step, when in memory
+  std::shared_ptr<const TriangleMesh> scene;
+};
 
 struct SonarRun {
   std::string name;  // the sequence's name, or the demo preset
@@ -25,11 +52,38 @@ struct SonarRun {
   std::vector<Eigen::Vector3d> initial;
   std::vector<std::int64_t> first_step;
   Eigen::AlignedBox3d bounds;  // poses, truth and estimates
+  // Features from the images: one frame per step (else empty).
+  bool from_images = false;
+  std::vector<SonarFrame> frames;
+  // The batch smoother after the EKF, when it was asked for.
+  std::optional<SonarSmootherRun> smoother;
+  // The scene the sequence was made from (truth/scene.ply), when present.
+  std::shared_ptr<const TriangleMesh> scene;
+  // What it was run from (to run it again with other options).
+  std::shared_ptr<const SonarJobInput> input;
 
   int steps() const { return static_cast<int>(result.steps.size()); }
 };
 
-// Runs the EKF over the sequence (every step's features kept).
+struct SonarJobOptions {
+  SonarInit init = SonarInit::kHypotheses;
+  // Features from the images (version 2) instead of measurements.csv;
+  // ignored (false) when the sequence has no images.
+  bool from_images = true;
+  bool smoother = false;  // the batch smoother after the EKF
+};
+
+// Reads an acoustic sequence folder for a job: the sequence and, when
+// present, truth/scene.ply. Throws as ReadAcousticSequence and LoadMesh.
+SonarJobInput ReadSonarJobInput(const std::string& directory, const std::string& name);
+// Simulates a layout ("prism", "tank", "above") with its images and scene.
+SonarJobInput SimulateSonarJobInput(const std::string& preset, std::uint64_t seed);
+
+// Runs the EKF over the sequence (every step's features kept), from the
+// images or the given measurements, then the smoother when asked. Throws
+// what the reading and the runs throw (InputError naming a bad image).
+SonarRun RunSonarJob(std::shared_ptr<const SonarJobInput> input, const SonarJobOptions& options, Progress& progress);
+// The given measurements only (no images, no smoother).
 SonarRun RunSonarJob(std::shared_ptr<const AcousticSequence> sequence, std::string name, SonarInit init,
                      Progress& progress);
 

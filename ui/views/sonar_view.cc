@@ -23,7 +23,7 @@ SonarView::SonarView(QWidget* parent) : QWidget(parent), impl_(std::make_unique<
   vtkNew<vtkInteractorStyleTrackballCamera> style;
   vtk_widget_->interactor()->SetInteractorStyle(style);
   layout->addWidget(vtk_widget_);
-  setMinimumSize(240, 180);
+  setMinimumSize(240, 120);
 }
 
 SonarView::~SonarView() = default;
@@ -48,6 +48,18 @@ void SonarView::SetEllipsoidScale(double scale) {
   ScheduleRender();
 }
 
+int SonarView::step() const { return impl_->step(); }
+
+void SonarView::SetSmoother(bool smoother) {
+  impl_->SetSmoother(smoother);
+  ScheduleRender();
+}
+
+void SonarView::SetSceneVisible(bool visible) {
+  impl_->SetSceneVisible(visible);
+  ScheduleRender();
+}
+
 void SonarView::ResetCamera(bool whole_run) {
   impl_->ResetCamera(whole_run);
   ScheduleRender();
@@ -62,7 +74,8 @@ QImage SonarView::Grab() {
 }
 
 SonarView::Counts SonarView::counts() const {
-  return {impl_->true_features, impl_->initial, impl_->estimated, impl_->feature_ellipsoids, impl_->pose_ellipsoids};
+  return {impl_->true_features,   impl_->initial,         impl_->estimated,       impl_->feature_ellipsoids,
+          impl_->pose_ellipsoids, impl_->scene_triangles, impl_->showing_smoother};
 }
 
 }  // namespace hull::ui

@@ -3,7 +3,8 @@
 // at the current step (red) with 3-sigma covariance ellipsoids, the true
 // trajectory (green), dead reckoning (grey) and the EKF's trajectory (red)
 // with a 3-sigma position ellipsoid per step, up to the current step, and
-// the sonar's field of view at it. World frame z down.
+// the sonar's field of view at it; or the batch smoother's points and poses
+// with their covariance ellipsoids; and the scene mesh. World frame z down.
 //
 // A QWidget around a QVTKOpenGLNativeWidget; VTK lives in SonarViewImpl.
 #pragma once
@@ -33,6 +34,12 @@ class SonarView : public QWidget {
   // Ellipsoids are drawn at 3 sigma times this factor (small pose
   // uncertainties become visible).
   void SetEllipsoidScale(double scale);
+  // The filter's estimates at the step, or the batch smoother's (its final
+  // points and its poses up to the step) when the run has them.
+  void SetSmoother(bool smoother);
+  // The scene mesh (truth/scene.ply), translucent, when the run has one.
+  void SetSceneVisible(bool visible);
+  int step() const;  // the step shown (clamped to the run)
   // Looks at the feature points (the paper's Fig. 8a), or at the whole run
   // with the trajectory.
   void ResetCamera(bool whole_run = false);
@@ -40,6 +47,8 @@ class SonarView : public QWidget {
 
   struct Counts {
     int true_features = 0, initial = 0, estimated = 0, feature_ellipsoids = 0, pose_ellipsoids = 0;
+    int scene_triangles = 0;
+    bool smoother = false;  // showing the smoother's estimates
   };
   Counts counts() const;
 

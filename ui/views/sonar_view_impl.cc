@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "sonar/acoustic_camera.h"
+#include "ui/views/scene_polydata_impl.h"
 #include "ui/views/vtk_grab_impl.h"
 
 namespace hull::ui {
@@ -116,9 +117,9 @@ SonarViewImpl::SonarViewImpl() {
   renderer_->SetBackground(0.05, 0.06, 0.09);
   renderer_->SetBackground2(0.22, 0.25, 0.30);
   window_->AddRenderer(renderer_);
-  const double colours[kLayers][3] = {{0.2, 0.85, 0.3}, {0.3, 0.5, 1.0},  {1.0, 0.25, 0.2},
-                                      {1.0, 0.35, 0.3}, {0.2, 0.85, 0.3}, {0.65, 0.65, 0.65},
-                                      {1.0, 0.3, 0.25}, {1.0, 0.65, 0.2}, {0.8, 0.85, 0.9}};
+  const double colours[kLayers][3] = {{0.2, 0.85, 0.3}, {0.3, 0.5, 1.0},    {1.0, 0.25, 0.2}, {1.0, 0.35, 0.3},
+                                      {0.2, 0.85, 0.3}, {0.65, 0.65, 0.65}, {1.0, 0.3, 0.25}, {1.0, 0.65, 0.2},
+                                      {0.8, 0.85, 0.9}, {0.55, 0.58, 0.62}};
   for (int layer = 0; layer < kLayers; ++layer) {
     vtkNew<vtkPolyDataMapper> mapper;
     mapper->SetInputData(vtkSmartPointer<vtkPolyData>::New());
@@ -145,6 +146,11 @@ SonarViewImpl::SonarViewImpl() {
       case kFieldOfView:
         p->SetOpacity(0.6);
         p->SetLineWidth(1.0);
+        break;
+      case kScene:
+        p->SetOpacity(0.35);
+        p->LightingOn();
+        p->SetRepresentationToSurface();
         break;
       default:
         p->SetLineWidth(2.5);
@@ -173,10 +179,25 @@ void SonarViewImpl::SetEllipsoidScale(double scale) {
   Rebuild();
 }
 
+void SonarViewImpl::SetSmoother(bool smoother) {
+  smoother_ = smoother;
+  Rebuild();
+}
+
+void SonarViewImpl::SetSceneVisible(bool visible) {
+  scene_visible_ = visible;
+  Rebuild();
+}
+
 void SonarViewImpl::Rebuild() {
   std::vector<vtkSmartPointer<vtkPolyData>> data(kLayers);
   for (auto& d : data) d = vtkSmartPointer<vtkPolyData>::New();
-  true_features = initial = estimated = feature_ellipsoids = pose_ellipsoids = 0;
+  true_features = initial = estimated = feature_ellipsoids = pose_ellipsoids = scene_triangles = 0;
+  showing_smoother = false;
+  if (run_ && run_->scene && scene_visible_) {
+    data[kScene] = MeshPolyData(*run_->scene);
+    scene_triangles = static_cast<int>(run_->scene->faces.size());
+  }
   if (run_ && run_->steps() > 0) {
     step_ = std::clamp(step_, 0, run_->steps() - 1);
     const SonarStepRecord& now = run_->result.steps[step_];
@@ -189,30 +210,47 @@ void SonarViewImpl::Rebuild() {
         path.push_back(truth->poses[i].head<3>());
       data[kTrueTrajectory] = Polyline(path);
     }
-    std::vector<Eigen::Vector3d> first;
-    for (std::size_t i = 0; i < run_->initial.size(); ++i) {
-      if (run_->first_step[i] <= now.estimate.step) first.push_back(run_->initial[i]);
-    }
-    data[kInitial] = Points(first);
-    initial = static_cast<int>(first.size());
+    showing_smoother = smoother_ && run_->smoother.has_value();
     std::vector<Eigen::Vector3d> est;
     std::vector<Ellipsoid> ell;
-    for (const SonarFeatureEstimate& f : now.features) {
-      est.push_back(f.position);
-      ell.push_back(ThreeSigmaEllipsoid(f.position, f.covariance));
+    std::vector<Eigen::Vector3d> path, dead;
+    std::vector<Ellipsoid> poses;
+    for (int i = 0; i <= step_; ++i) dead.push_back(run_->result.steps[i].dead_reckoning.head<3>());
+    if (showing_smoother) {
+      // The smoother's: its final points (every one, smoothed or held out at
+      // the EKF's) and its poses up to the step, each with its covariance.
+      const SonarSmootherResult& sm = run_->smoother->result;
+      for (const SonarSmoothedFeature& f : sm.features) {
+        est.push_back(f.position);
+        if (f.covariance.allFinite()) ell.push_back(ThreeSigmaEllipsoid(f.position, f.covariance));
+      }
+      for (int i = 0; i <= step_ && i < static_cast<int>(sm.poses.size()); ++i) {
+        path.push_back(sm.poses[i].head<3>());
+        const Eigen::Matrix3d c = sm.pose_covariances[i].topLeftCorner<3, 3>();
+        if (c.allFinite()) poses.push_back(ThreeSigmaEllipsoid(sm.poses[i].head<3>(), c));
+      }
+    } else {
+      std::vector<Eigen::Vector3d> first;
+      for (std::size_t i = 0; i < run_->initial.size(); ++i) {
+        if (run_->first_step[i] <= now.estimate.step) first.push_back(run_->initial[i]);
+      }
+      data[kInitial] = Points(first);
+      initial = static_cast<int>(first.size());
+      for (const SonarFeatureEstimate& f : now.features) {
+        est.push_back(f.position);
+        ell.push_back(ThreeSigmaEllipsoid(f.position, f.covariance));
+      }
+      for (int i = 0; i <= step_; ++i) {
+        const SonarStepRecord& r = run_->result.steps[i];
+        path.push_back(r.estimate.pose.head<3>());
+        poses.push_back(
+            ThreeSigmaEllipsoid(r.estimate.pose.head<3>(), r.estimate.pose_covariance.topLeftCorner<3, 3>()));
+      }
     }
     data[kEstimated] = Points(est);
     data[kFeatureEllipsoids] = Ellipsoids(ell, scale_);
     estimated = static_cast<int>(est.size());
     feature_ellipsoids = static_cast<int>(ell.size());
-    std::vector<Eigen::Vector3d> path, dead;
-    std::vector<Ellipsoid> poses;
-    for (int i = 0; i <= step_; ++i) {
-      const SonarStepRecord& r = run_->result.steps[i];
-      path.push_back(r.estimate.pose.head<3>());
-      dead.push_back(r.dead_reckoning.head<3>());
-      poses.push_back(ThreeSigmaEllipsoid(r.estimate.pose.head<3>(), r.estimate.pose_covariance.topLeftCorner<3, 3>()));
-    }
     data[kTrajectory] = Polyline(path);
     data[kDeadReckoning] = Polyline(dead);
     data[kPoseEllipsoids] = Ellipsoids(poses, scale_);

@@ -24,12 +24,18 @@ class SonarViewImpl {
   vtkGenericOpenGLRenderWindow* window() const { return window_; }
   void SetRun(std::shared_ptr<const SonarRun> run);
   void SetStep(int step);
+  int step() const { return step_; }
   void SetEllipsoidScale(double scale);
+  // The filter's estimates at the step, or the smoother's (when the run has them).
+  void SetSmoother(bool smoother);
+  void SetSceneVisible(bool visible);
   void ResetCamera(bool whole_run);
   void Render();
   QImage Grab();
 
   int true_features = 0, initial = 0, estimated = 0, feature_ellipsoids = 0, pose_ellipsoids = 0;
+  int scene_triangles = 0;
+  bool showing_smoother = false;
 
  private:
   enum Layer {
@@ -42,6 +48,7 @@ class SonarViewImpl {
     kTrajectory,
     kPoseEllipsoids,
     kFieldOfView,
+    kScene,
     kLayers
   };
   void Rebuild();
@@ -52,6 +59,8 @@ class SonarViewImpl {
   std::shared_ptr<const SonarRun> run_;
   int step_ = 0;
   double scale_ = 1.0;
+  bool smoother_ = false;
+  bool scene_visible_ = true;
 };
 
 }  // namespace hull::ui

@@ -352,6 +352,75 @@ TEST(SonarTracker, AssociatesConfirmsAndDrops) {
   EXPECT_LE(ekf.num_pending(), 4) << "tentative clutter is dropped";
 }
 
+// The step keeps what the EKF predicted before the correction (the fan
+// view draws it): every in-state candidate with h(X) and H P H^T as the
+// filter computes them after the prediction, the detection JCBB paired with
+// it; waiting features with their most likely hypothesis.
+TEST(SonarTracker, KeepsThePredictionsAndTheirPairings) {
+  const AcousticSequence seq = Prism(3);
+  const auto by_step = MeasurementsByStep(seq);
+  const SonarImageFormat f;
+  SonarEkfOptions eo;
+  eo.confirm_views = 3;
+  SonarEkf ekf(seq, eo);
+  SonarTracker tracker;
+  std::mt19937 rng(4);
+  int in_state = 0, waiting = 0, paired = 0;
+  for (int k = 0; k < seq.num_steps(); ++k) {
+    const std::vector<SonarDetection> dets = Detections(by_step[static_cast<std::size_t>(k)], seq.sensor, f, 1, rng);
+    const SonarControl* u = k ? &seq.controls[static_cast<std::size_t>(k - 1)] : nullptr;
+    SonarEkf before = ekf;
+    before.Predict(u);
+    const std::vector<std::int64_t> pending = before.PendingIds();
+    const SonarTrackStep t = tracker.Step(ekf, u, dets, f);
+    int candidates = 0;
+    std::vector<int> claimed(dets.size(), 0);
+    for (const SonarPrediction& p : t.predictions) {
+      if (p.detection >= 0) {
+        ASSERT_LT(p.detection, static_cast<int>(dets.size()));
+        ++claimed[static_cast<std::size_t>(p.detection)];
+        EXPECT_EQ(t.feature[static_cast<std::size_t>(p.detection)], p.id);
+        EXPECT_EQ(t.pairing[static_cast<std::size_t>(p.detection)],
+                  p.waiting ? SonarPairing::kWaiting : SonarPairing::kInState);
+        ++paired;
+      }
+      if (p.waiting) {
+        ++waiting;
+        EXPECT_TRUE(std::binary_search(pending.begin(), pending.end(), p.id));
+        double best = -1;
+        Eigen::Vector2d z = Eigen::Vector2d::Zero();
+        for (const auto& h : before.PredictPending(p.id)) {
+          if (h.weight > best) {
+            best = h.weight;
+            z = h.z;
+          }
+        }
+        EXPECT_NEAR((p.z - z).norm(), 0.0, 1e-12);
+        continue;
+      }
+      ++candidates;
+      ++in_state;
+      Eigen::VectorXd z;
+      Eigen::MatrixXd C;
+      before.PredictMeasurements({p.id}, &z, &C);
+      EXPECT_NEAR((p.z - z).norm(), 0.0, 1e-12);
+      EXPECT_NEAR((p.covariance - C).norm(), 0.0, 1e-9 * C.norm());
+      EXPECT_GT(p.covariance.determinant(), 0.0);
+    }
+    EXPECT_EQ(candidates, t.candidates) << "step " << k;
+    for (std::size_t j = 0; j < dets.size(); ++j) {
+      // Every detection paired with an in-state feature is some prediction's, once.
+      if (t.pairing[j] == SonarPairing::kInState) {
+        EXPECT_EQ(claimed[j], 1) << "step " << k;
+      }
+      EXPECT_LE(claimed[j], 1);
+    }
+  }
+  EXPECT_GT(in_state, 100);
+  EXPECT_GT(waiting, 0);
+  EXPECT_GT(paired, 100);
+}
+
 TEST(SonarTracker, OptionsCheckNamesTheField) {
   SonarTrackerOptions o;
   std::string why;
