@@ -11,7 +11,7 @@ PACKAGES=(
   clang libclang-rt-dev
   # core libraries
   libeigen3-dev libceres-dev libcgal-dev libopenmesh-dev libassimp-dev libopencv-dev
-  libembree-dev libnanoflann-dev libpcl-dev libtbb-dev zlib1g-dev
+  libembree-dev libnanoflann-dev libpcl-dev libtbb-dev zlib1g-dev nlohmann-json3-dev
   # the step-iges plugin: STEP and IGES through OpenCASCADE
   libocct-foundation-dev libocct-modeling-data-dev libocct-modeling-algorithms-dev libocct-data-exchange-dev
   # GUI

@@ -1,7 +1,10 @@
 #include "base/json.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <cstring>
+#include <iterator>
 
 #include "base/csv.h"
 
@@ -52,253 +55,235 @@ Json& Json::Push(Json value) {
 }
 
 // ---------------------------------------------------------------------------
+// Parsing: nlohmann::json's SAX parser (lexing, grammar, escapes, UTF-8
+// validation) builds our document. nlohmann 3.11 reports no positions of
+// values, only the byte offset of a syntax error, so the parser reads the
+// text through an iterator that publishes how far the lexer has read; each
+// value's first byte is found from there (its token has just ended) and
+// turned into line and column.
+namespace {
+
+using NJson = nlohmann::json;
+
+// Deeper documents are refused: the document model, its writer and its
+// destructor recurse (hostile input: tests/fuzz, json harness).
+constexpr int kMaxDepth = 200;
+
+class TrackingIterator {
+ public:
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  TrackingIterator(const char* p, const char** read) : p_(p), read_(read) {}
+  reference operator*() const { return *p_; }
+  TrackingIterator& operator++() {
+    *read_ = ++p_;
+    return *this;
+  }
+  TrackingIterator operator++(int) {
+    TrackingIterator before = *this;
+    ++*this;
+    return before;
+  }
+  bool operator==(const TrackingIterator& o) const { return p_ == o.p_; }
+  bool operator!=(const TrackingIterator& o) const { return p_ != o.p_; }
+
+ private:
+  const char* p_;
+  const char** read_;
+};
+
+bool IsNumberChar(char c) { return (c >= '0' && c <= '9') || c == '-' || c == '+' || c == '.' || c == 'e' || c == 'E'; }
+
+}  // namespace
+
 class JsonParser {
  public:
-  JsonParser(std::string_view text, const std::string& file) : s_(text), file_(file) {}
+  JsonParser(std::string_view text, const std::string& file) : s_(text), file_(file), read_(text.data()) {}
 
   Json ParseDocument() {
-    SkipSpace();
-    Json v = ParseValue(0);
-    SkipSpace();
-    if (p_ < s_.size()) Fail("unexpected text after the JSON document");
-    return v;
+    const TrackingIterator first(s_.data(), &read_), last(s_.data() + s_.size(), &read_);
+    NJson::sax_parse(first, last, this);  // errors throw InputError from the callbacks
+    return std::move(root_);
+  }
+
+  // ---- nlohmann's SAX interface ----
+  bool null() {
+    Place(Json(), Read() - 4);
+    return true;
+  }
+  bool boolean(bool b) {
+    Place(Json(b), Read() - (b ? 4 : 5));
+    return true;
+  }
+  bool number_integer(NJson::number_integer_t v) {
+    Place(Json(static_cast<std::int64_t>(v)), NumberStart());
+    return true;
+  }
+  bool number_unsigned(NJson::number_unsigned_t v) {
+    Json j(static_cast<double>(v));
+    j.integer_ = true;
+    Place(std::move(j), NumberStart());
+    return true;
+  }
+  bool number_float(NJson::number_float_t v, const NJson::string_t& /*text*/) {
+    Place(Json(static_cast<double>(v)), NumberStart());  // finite: nlohmann refuses an overflow
+    return true;
+  }
+  bool string(NJson::string_t& v) {
+    Place(Json(std::move(v)), StringStart());
+    return true;
+  }
+  bool binary(NJson::binary_t& /*v*/) { return true; }  // not produced by JSON text
+  bool start_object(std::size_t /*elements*/) {
+    Open(Json::Object());
+    return true;
+  }
+  bool key(NJson::string_t& k) {
+    const Json& object = *stack_.back();
+    for (const auto& m : object.members_) {
+      if (m.first == k) Fail(Read(), "duplicate key \"" + k + "\"");
+    }
+    key_ = std::move(k);
+    return true;
+  }
+  bool end_object() { return Close(); }
+  bool start_array(std::size_t /*elements*/) {
+    Open(Json::Array());
+    return true;
+  }
+  bool end_array() { return Close(); }
+  bool parse_error(std::size_t position, const std::string& /*last_token*/, const nlohmann::detail::exception& e) {
+    // `position` counts the bytes read. The lexer stops at the byte that
+    // broke a token ("; last read: " in the message); a token that is whole
+    // but out of place (or a number out of range) is pointed at its start.
+    const std::string what = e.what();
+    std::size_t at = position > 0 ? position - 1 : 0;
+    if (what.find("; last read: ") == std::string::npos) at = TokenStart(at);
+    at = std::min(at, s_.size());
+    Fail(at, Explain(at, e.id, what));
   }
 
  private:
-  [[noreturn]] void Fail(const std::string& what) const {
-    throw InputError({file_, line_, static_cast<int>(p_ - line_start_) + 1, ""}, what);
+  std::size_t Read() const { return static_cast<std::size_t>(read_ - s_.data()); }
+
+  // A number's token has ended at the lexer's look-ahead (or the end of the text).
+  std::size_t NumberStart() const {
+    std::size_t p = Read();
+    if (p > 0 && !IsNumberChar(s_[p - 1])) --p;
+    while (p > 0 && IsNumberChar(s_[p - 1])) --p;
+    return p;
   }
-  void SkipSpace() {
-    while (p_ < s_.size()) {
-      char c = s_[p_];
-      if (c == '\n') {
-        ++line_;
-        line_start_ = p_ + 1;
-      } else if (c != ' ' && c != '\t' && c != '\r') {
+  // A string's token has ended at its closing quote.
+  std::size_t StringStart() const { return OpeningQuote(Read() - 1); }
+  // The opening quote of the string closed at `close`: the first quote before
+  // it that is not escaped (preceded by an even number of '\').
+  std::size_t OpeningQuote(std::size_t close) const {
+    std::size_t q = close;
+    while (q > 0) {
+      --q;
+      if (s_[q] != '"') continue;
+      std::size_t slashes = 0;
+      while (slashes < q && s_[q - 1 - slashes] == '\\') ++slashes;
+      if (slashes % 2 == 0) return q;
+    }
+    return 0;
+  }
+  // The first byte of the whole token whose last byte is at `last` (a
+  // string, a number, a literal or one structural character).
+  std::size_t TokenStart(std::size_t last) const {
+    if (last >= s_.size()) return s_.size();
+    if (s_[last] == '"' && last > 0) return OpeningQuote(last);
+    const auto word = [](char c) { return IsNumberChar(c) || (c >= 'a' && c <= 'z'); };
+    if (!word(s_[last])) return last;
+    while (last > 0 && word(s_[last - 1])) --last;
+    return last;
+  }
+
+  Json& Place(Json v, std::size_t start) {
+    const auto [line, column] = LineColumn(start);
+    v.line_ = line;
+    v.column_ = column;
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      return root_;
+    }
+    Json& parent = *stack_.back();
+    if (parent.type_ == Json::Type::kArray) {
+      parent.items_.push_back(std::move(v));
+      return parent.items_.back();
+    }
+    parent.members_.emplace_back(std::move(key_), std::move(v));
+    return parent.members_.back().second;
+  }
+  void Open(Json container) {
+    const std::size_t start = Read() - 1;  // '{' or '['
+    if (static_cast<int>(stack_.size()) >= kMaxDepth) Fail(start, "JSON nested too deeply");
+    stack_.push_back(&Place(std::move(container), start));
+  }
+  bool Close() {
+    stack_.pop_back();
+    return true;
+  }
+
+  // nlohmann's message without its prefix ("[json.exception.parse_error.101]
+  // parse error at line 1, column 7: "), led by what was expected there.
+  std::string Explain(std::size_t at, int id, const std::string& what) const {
+    const std::string_view rest = s_.substr(at);
+    if (rest.rfind("NaN", 0) == 0 || rest.rfind("Infinity", 0) == 0 || rest.rfind("-Infinity", 0) == 0) {
+      return "NaN and Infinity are not JSON numbers";
+    }
+    std::string why = what;
+    if (why.rfind("[json.exception.", 0) == 0 && why.find("] ") != std::string::npos) {
+      why = why.substr(why.find("] ") + 2);
+    }
+    if (why.rfind("parse error", 0) == 0 && why.find(": ") != std::string::npos) why = why.substr(why.find(": ") + 2);
+    const auto in = [&](const char* context) { return why.find(context) != std::string::npos; };
+    if (id == 406) return "number out of range (" + why + ")";
+    if (in("while parsing object key ")) return "expected a quoted key (" + why + ")";
+    if (in("while parsing object separator ")) return "expected ':' after the key \"" + key_ + "\" (" + why + ")";
+    if (in("while parsing object ")) return "expected ',' or '}' in an object (" + why + ")";
+    if (in("while parsing array ")) return "expected ',' or ']' in an array (" + why + ")";
+    if (in("expected end of input")) return "unexpected text after the JSON document (" + why + ")";
+    return why;
+  }
+
+  [[noreturn]] void Fail(std::size_t at, const std::string& message) {
+    const auto [line, column] = LineColumn(at);
+    throw InputError({file_, line, column, ""}, message);
+  }
+
+  // 1-based line and column of byte `at`; offsets mostly increase, so the
+  // line count carries on from the previous call.
+  std::pair<int, int> LineColumn(std::size_t at) {
+    if (at < scanned_) {
+      scanned_ = 0;
+      line_ = 1;
+      line_start_ = 0;
+    }
+    while (scanned_ < at) {
+      const void* nl = std::memchr(s_.data() + scanned_, '\n', at - scanned_);
+      if (!nl) {
+        scanned_ = at;
         break;
       }
-      ++p_;
+      scanned_ = static_cast<std::size_t>(static_cast<const char*>(nl) - s_.data()) + 1;
+      line_start_ = scanned_;
+      ++line_;
     }
-  }
-  void Mark(Json& v) const {
-    v.line_ = line_;
-    v.column_ = static_cast<int>(p_ - line_start_) + 1;
-  }
-  bool Consume(std::string_view word) {
-    if (s_.substr(p_, word.size()) == word) {
-      p_ += word.size();
-      return true;
-    }
-    return false;
-  }
-
-  Json ParseValue(int depth) {
-    if (depth > 200) Fail("JSON nested too deeply");
-    if (p_ >= s_.size()) Fail("unexpected end of the file; expected a value");
-    Json v;
-    Mark(v);
-    char c = s_[p_];
-    if (c == '{') {
-      v.type_ = Json::Type::kObject;
-      ++p_;
-      SkipSpace();
-      if (p_ < s_.size() && s_[p_] == '}') {
-        ++p_;
-        return v;
-      }
-      while (true) {
-        SkipSpace();
-        if (p_ >= s_.size() || s_[p_] != '"') Fail("expected a quoted key");
-        std::string key = ParseString();
-        for (const auto& m : v.members_) {
-          if (m.first == key) Fail("duplicate key \"" + key + "\"");
-        }
-        SkipSpace();
-        if (p_ >= s_.size() || s_[p_] != ':') Fail("expected ':' after the key \"" + key + "\"");
-        ++p_;
-        SkipSpace();
-        v.members_.emplace_back(std::move(key), ParseValue(depth + 1));
-        SkipSpace();
-        if (p_ < s_.size() && s_[p_] == ',') {
-          ++p_;
-          continue;
-        }
-        if (p_ < s_.size() && s_[p_] == '}') {
-          ++p_;
-          return v;
-        }
-        Fail("expected ',' or '}' in an object");
-      }
-    }
-    if (c == '[') {
-      v.type_ = Json::Type::kArray;
-      ++p_;
-      SkipSpace();
-      if (p_ < s_.size() && s_[p_] == ']') {
-        ++p_;
-        return v;
-      }
-      while (true) {
-        SkipSpace();
-        v.items_.push_back(ParseValue(depth + 1));
-        SkipSpace();
-        if (p_ < s_.size() && s_[p_] == ',') {
-          ++p_;
-          continue;
-        }
-        if (p_ < s_.size() && s_[p_] == ']') {
-          ++p_;
-          return v;
-        }
-        Fail("expected ',' or ']' in an array");
-      }
-    }
-    if (c == '"') {
-      v.type_ = Json::Type::kString;
-      v.string_ = ParseString();
-      return v;
-    }
-    if (Consume("true")) {
-      v.type_ = Json::Type::kBool;
-      v.bool_ = true;
-      return v;
-    }
-    if (Consume("false")) {
-      v.type_ = Json::Type::kBool;
-      return v;
-    }
-    if (Consume("null")) return v;
-    if (c == '-' || (c >= '0' && c <= '9')) {
-      std::size_t start = p_;
-      bool integer = true;
-      if (s_[p_] == '-') ++p_;
-      while (p_ < s_.size()) {
-        char d = s_[p_];
-        if (d >= '0' && d <= '9') {
-          ++p_;
-        } else if (d == '.' || d == 'e' || d == 'E' || d == '+' || d == '-') {
-          integer = false;
-          ++p_;
-        } else {
-          break;
-        }
-      }
-      double x = 0;
-      if (!ParseFiniteDouble(s_.substr(start, p_ - start), x)) {
-        p_ = start;
-        Fail("malformed number");
-      }
-      v.type_ = Json::Type::kNumber;
-      v.number_ = x;
-      v.integer_ = integer;
-      return v;
-    }
-    if (Consume("NaN") || Consume("Infinity") || Consume("-Infinity")) {
-      p_ -= 3;
-      Fail("NaN and Infinity are not JSON numbers");
-    }
-    Fail(std::string("unexpected character '") + c + "'; expected a JSON value");
-  }
-
-  static void AppendUtf8(std::string& out, unsigned cp) {
-    if (cp < 0x80) {
-      out += static_cast<char>(cp);
-    } else if (cp < 0x800) {
-      out += static_cast<char>(0xC0 | (cp >> 6));
-      out += static_cast<char>(0x80 | (cp & 0x3F));
-    } else if (cp < 0x10000) {
-      out += static_cast<char>(0xE0 | (cp >> 12));
-      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (cp & 0x3F));
-    } else {
-      out += static_cast<char>(0xF0 | (cp >> 18));
-      out += static_cast<char>(0x80 | ((cp >> 12) & 0x3F));
-      out += static_cast<char>(0x80 | ((cp >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (cp & 0x3F));
-    }
-  }
-
-  unsigned Hex4() {
-    if (p_ + 4 > s_.size()) Fail("truncated \\u escape");
-    unsigned cp = 0;
-    for (int i = 0; i < 4; ++i) {
-      char h = s_[p_++];
-      cp <<= 4;
-      if (h >= '0' && h <= '9')
-        cp |= static_cast<unsigned>(h - '0');
-      else if (h >= 'a' && h <= 'f')
-        cp |= static_cast<unsigned>(h - 'a' + 10);
-      else if (h >= 'A' && h <= 'F')
-        cp |= static_cast<unsigned>(h - 'A' + 10);
-      else
-        Fail("bad hex digit in a \\u escape");
-    }
-    return cp;
-  }
-
-  std::string ParseString() {
-    ++p_;  // opening quote
-    std::string out;
-    while (true) {
-      if (p_ >= s_.size()) Fail("string is not closed before the end of the file");
-      char c = s_[p_];
-      if (c == '"') {
-        ++p_;
-        return out;
-      }
-      if (c == '\n') Fail("line break inside a string");
-      if (c == '\\') {
-        ++p_;
-        if (p_ >= s_.size()) Fail("truncated escape");
-        char e = s_[p_++];
-        switch (e) {
-          case '"':
-            out += '"';
-            break;
-          case '\\':
-            out += '\\';
-            break;
-          case '/':
-            out += '/';
-            break;
-          case 'b':
-            out += '\b';
-            break;
-          case 'f':
-            out += '\f';
-            break;
-          case 'n':
-            out += '\n';
-            break;
-          case 'r':
-            out += '\r';
-            break;
-          case 't':
-            out += '\t';
-            break;
-          case 'u': {
-            unsigned cp = Hex4();
-            if (cp >= 0xD800 && cp < 0xDC00 && Consume("\\u")) {
-              unsigned lo = Hex4();
-              cp = 0x10000 + ((cp - 0xD800) << 10) + (lo - 0xDC00);
-            }
-            AppendUtf8(out, cp);
-            break;
-          }
-          default:
-            --p_;
-            Fail(std::string("unknown escape \\") + e);
-        }
-        continue;
-      }
-      out += c;
-      ++p_;
-    }
+    return {line_, static_cast<int>(at - line_start_) + 1};
   }
 
   std::string_view s_;
   const std::string& file_;
-  std::size_t p_ = 0;
+  const char* read_;  // one past the last byte the lexer read
+  Json root_;
+  std::vector<Json*> stack_;  // the open arrays and objects
+  std::string key_;           // the key of the member whose value comes next
+  std::size_t scanned_ = 0;
   int line_ = 1;
   std::size_t line_start_ = 0;
 };
@@ -308,37 +293,14 @@ Json Json::Parse(std::string_view text, const std::string& file) {
   return JsonParser(text, file).ParseDocument();
 }
 
+// ---------------------------------------------------------------------------
+// Writing: our layout (two-space indents, numeric arrays on one line),
+// numbers in their shortest round-trip form as the CSV files print them
+// (std::to_chars, base/csv.h), strings escaped by nlohmann (invalid UTF-8
+// becomes U+FFFD, so whatever is written reads back).
 namespace {
 void DumpString(std::string& out, const std::string& s) {
-  out += '"';
-  for (char c : s) {
-    switch (c) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\r':
-        out += "\\r";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof(buf), "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  out += '"';
+  out += NJson(s).dump(-1, ' ', false, NJson::error_handler_t::replace);
 }
 }  // namespace
 

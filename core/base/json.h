@@ -1,7 +1,9 @@
 // A small JSON document model that remembers where each value was in its
-// file, so that a wrong field is reported with file, line and column
-// (nlohmann::json 3.11 in Debian 12 keeps no positions). Also a writer that
-// prints numbers in their shortest round-trip form.
+// file, so that a wrong field is reported with file, line and column.
+// nlohmann::json parses the text (its SAX interface builds this model; its
+// 3.11 in Debian 12 keeps no positions of values, so json.cc finds them) and
+// escapes strings on writing; numbers are written in their shortest
+// round-trip form, as in the CSV files.
 #pragma once
 
 #include <cstdint>

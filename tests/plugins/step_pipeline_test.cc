@@ -5,16 +5,14 @@
 // Also `plugins` listing what loaded and what was refused, and why.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
-#include <array>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "cad_shapes.h"
+#include "support/cli_run.h"
 #include "support/test_files.h"
 
 namespace {
@@ -22,25 +20,9 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using hull::testing::CliRun;
 
-CliRun Cli(const std::vector<std::string>& args) {
-  std::string cmd = "'" + std::string(HI_CLI_PATH) + "'";
-  for (const std::string& a : args) cmd += " '" + a + "'";
-  cmd += " 2>&1";
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+CliRun Cli(const std::vector<std::string>& args) { return hull::testing::RunProgram(HI_CLI_PATH, args); }
 
 TEST(StepPipeline, AStepHullRunsThroughTheWholePipeline) {
   const hull::testing::ScratchDir tmp("step_pipeline");

@@ -2,49 +2,25 @@
 // lines (exit 2 naming the option), bad input (the file, line and field), and
 // a simulate -> validate round trip.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <zlib.h>
 
-#include <array>
 #include <chrono>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "support/cli_run.h"
 #include "support/test_files.h"
 #include "support/test_surveys.h"
 #include "unit/vision/vision_scene.h"
 
 namespace {
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using hull::testing::CliRun;
 
-std::string Quote(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-CliRun Cli(const std::vector<std::string>& args) {
-  std::string cmd = Quote(HI_CLI_PATH);
-  for (const std::string& a : args) cmd += " " + Quote(a);
-  cmd += " 2>&1";
-  CliRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+CliRun Cli(const std::vector<std::string>& args) { return hull::testing::RunProgram(HI_CLI_PATH, args); }
 
 const std::vector<std::string> kCommands = {"simulate", "validate", "info",   "align",   "run",      "adjust",
                                             "map",      "sonar",    "export", "plugins", "features", "mosaic"};

@@ -2,31 +2,22 @@
 // beside the filter's (given correspondences and from images), the summary's
 // smoother block, and a bad option named.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "support/cli_run.h"
 #include "support/test_files.h"
 
 namespace {
 
-// Runs the CLI through the shell; returns the exit code and appends stdout and stderr to output.
+// Runs the CLI; returns the exit code and appends stdout and stderr to output.
 int Cli(const std::vector<std::string>& args, std::string* output) {
-  std::string cmd = std::string("'") + HI_CLI_PATH + "'";
-  for (const std::string& a : args) cmd += " '" + a + "'";  // the test's own paths: no quotes inside
-  cmd += " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return -1;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) output->append(buf.data(), n);
-  const int status = pclose(pipe);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const hull::testing::CliRun r = hull::testing::RunProgram(HI_CLI_PATH, args);
+  *output += r.output;
+  return r.exit_code;
 }
 
 TEST(SonarSmootherCli, WritesTheSmoothersResultsBesideTheFilters) {
