@@ -116,7 +116,7 @@ class ImagesCanvas : public QWidget {
     if (layers.stereo) {
       for (const OverlayMatch& m : o.stereo) {
         QColor c = VerdictColour(m.verdict);
-        c.setAlpha(m.verdict == MatchVerdict::kUnverified ? 120 : 210);
+        c.setAlpha(m.verdict == MatchVerdict::kUnverified ? 90 : 150);
         p.setPen(QPen(c, 1.0, Qt::DashLine));
         p.drawLine(at(m.from), at(m.to));
       }
