@@ -96,8 +96,8 @@ class ImagesViewTest : public QObject {
       QCOMPARE(static_cast<int>(o.temporal.size()), pair->putative);
       QCOMPARE(o.temporal_inliers, pair->inliers);
       QCOMPARE(o.temporal_outliers, pair->putative - pair->inliers);
-      qInfo("keyframe %d: %d features, %d tracked, stereo %d, temporal %d (%d inliers, pair %s)", index,
-            k.top_features, k.tracked, k.stereo_matches, pair->putative, pair->inliers,
+      qInfo("keyframe %d: %d features, %d tracked, stereo %d, temporal %d (%d inliers, pair %s)", index, k.top_features,
+            k.tracked, k.stereo_matches, pair->putative, pair->inliers,
             pair->accepted ? "accepted" : pair->note.c_str());
       QCOMPARE(o.previous_pair_accepted, pair->accepted);
       if (index < 10) QVERIFY(pair->accepted && o.temporal_inliers > 20);  // the last may be after a turn
