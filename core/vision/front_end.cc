@@ -82,12 +82,17 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
         k.has_top = true;
         v.top = DetectFeatures(ReadSurveyImage(bundle, nav.keyframe, false), o.detection);
         k.top_features = static_cast<int>(v.top.size());
+        k.top_points = v.top.points;
+        k.top_sizes = v.top.sizes;
         if (rig.stereo() && !img->bottom.empty()) {
           k.has_bottom = true;
           const ImageFeatures bottom = DetectFeatures(ReadSurveyImage(bundle, nav.keyframe, true), o.detection);
           k.bottom_features = static_cast<int>(bottom.size());
+          k.bottom_points = bottom.points;
+          k.bottom_sizes = bottom.sizes;
           v.stereo = MatchStereo(v.top, bottom, rig, o.stereo);
           k.stereo_matches = static_cast<int>(v.stereo.size());
+          for (const StereoMatch& m : v.stereo) k.stereo.push_back({m.top, m.bottom, MatchVerdict::kUnverified});
         }
       }
       detect_progress.Step("features of keyframe " + std::to_string(nav.keyframe));
@@ -119,6 +124,8 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   // 3. Tracks: links of accepted pairs, best (smallest descriptor distance) first.
   progress.Update(0.95, "building tracks");
   std::vector<Link> links;
+  std::vector<std::vector<MatchVerdict>> verdicts(n);  // per top feature
+  for (std::size_t i = 0; i < n; ++i) verdicts[i].assign(views[i].top.size(), MatchVerdict::kUnverified);
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const PairMatches& m = matches[p];
     FrontEndPair fp;
@@ -129,7 +136,21 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
     fp.inliers = m.inliers;
     fp.accepted = m.accepted;
     fp.note = m.note;
-    r.pairs.push_back(fp);
+    for (std::size_t q = 0; q < m.putative_matches.size(); ++q) {
+      const TemporalMatch& t = m.putative_matches[q];
+      const bool inlier = q < m.putative_inlier.size() && m.putative_inlier[q];
+      fp.matches.push_back({t.a, t.b, inlier});
+      // The verdict on the stereo matches of both keyframes' top features.
+      for (const auto& [ki, f] : {std::pair{pairs[p].first, t.a}, std::pair{pairs[p].second, t.b}}) {
+        std::vector<MatchVerdict>& v = verdicts[ki];
+        if (inlier) {
+          v[static_cast<std::size_t>(f)] = MatchVerdict::kInlier;
+        } else if (v[static_cast<std::size_t>(f)] == MatchVerdict::kUnverified) {
+          v[static_cast<std::size_t>(f)] = MatchVerdict::kOutlier;
+        }
+      }
+    }
+    r.pairs.push_back(std::move(fp));
     if (!m.accepted) continue;
     for (const auto& t : m.matches)
       links.push_back({t.distance, static_cast<int>(pairs[p].first), t.a, static_cast<int>(pairs[p].second), t.b});
@@ -141,6 +162,10 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   for (const Link& l : links) builder.Link(l.ka, l.fa, l.kb, l.fb);
   r.refused_merges = builder.refused();
   const auto tracks = builder.Tracks(o.tracks.min_keyframes, &r.dropped_tracks);
+  for (std::size_t i = 0; i < n; ++i) {
+    for (FrontEndStereoLink& s : r.keyframes[i].stereo) s.verdict = verdicts[i][static_cast<std::size_t>(s.top)];
+    r.keyframes[i].landmark.assign(views[i].top.size(), -1);
+  }
 
   // 4. Observations with global landmark ids (track order).
   std::vector<std::vector<int>> bottom_of(n);  // top feature -> bottom feature (-1: none)
@@ -163,6 +188,7 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
         obs.bottom = views[ki].stereo[static_cast<std::size_t>(s)].bottom_uv;
       }
       rows.emplace_back(k, obs.landmark, obs);
+      r.keyframes[ki].landmark[static_cast<std::size_t>(f)] = obs.landmark;
       ++r.keyframes[ki].tracked;
     }
   }
@@ -175,6 +201,13 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   progress.Update(1.0, "front end done");
   return r;
+}
+
+int FrontEndResult::KeyframeIndex(std::int64_t keyframe) const {
+  for (std::size_t i = 0; i < keyframes.size(); ++i) {
+    if (keyframes[i].keyframe == keyframe) return static_cast<int>(i);
+  }
+  return -1;
 }
 
 void WriteFrontEndResult(const FrontEndResult& r, const SurveyManifest& manifest, const std::string& features_csv) {

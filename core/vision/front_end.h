@@ -5,6 +5,7 @@
 // unchanged. Qt-free; Progress for progress and cancellation.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,12 +16,40 @@
 
 namespace hull {
 
+// What RANSAC said of a match: an inlier, an outlier, or the match never
+// took part in a RANSAC (a stereo match no temporal match used).
+enum class MatchVerdict : std::uint8_t { kUnverified, kInlier, kOutlier };
+
+// A top <-> bottom match of one keyframe (feature indices). Its verdict is
+// that of its top feature in the temporal RANSACs (stereo: the rigid
+// alignment checks the triangulated point): an inlier of any pair, else an
+// outlier when it was a putative temporal match, else unverified.
+struct FrontEndStereoLink {
+  int top = 0, bottom = 0;
+  MatchVerdict verdict = MatchVerdict::kUnverified;
+};
+
+// A putative temporal match (top feature indices in the pair's keyframes)
+// and whether the pair's RANSAC kept it.
+struct FrontEndMatch {
+  int a = 0, b = 0;
+  bool inlier = false;
+};
+
 struct FrontEndKeyframe {
   std::int64_t keyframe = 0;
   bool has_top = false, has_bottom = false;  // images present (missing: a dropped frame)
   int top_features = 0, bottom_features = 0;
   int stereo_matches = 0;
   int tracked = 0;  // observations written for this keyframe
+  // The features and matches themselves (what the GUI's images view draws):
+  // pixel positions (origin at the centre of the top-left pixel) and SIFT
+  // sizes (diameter, px) of each image's features, the stereo matches, and
+  // per top feature the landmark id of its track (-1: not in a track).
+  std::vector<Eigen::Vector2d> top_points, bottom_points;
+  std::vector<float> top_sizes, bottom_sizes;
+  std::vector<FrontEndStereoLink> stereo;
+  std::vector<std::int64_t> landmark;
 };
 
 struct FrontEndPair {
@@ -28,18 +57,22 @@ struct FrontEndPair {
   bool stereo = false;  // rigid alignment of clouds; else essential matrix
   int putative = 0, inliers = 0;
   bool accepted = false;
-  std::string note;  // why a pair was dropped
+  std::string note;                    // why a pair was dropped
+  std::vector<FrontEndMatch> matches;  // the putative matches (size putative; `inliers` of them inliers)
   double InlierRatio() const { return putative > 0 ? static_cast<double>(inliers) / putative : 0.0; }
 };
 
 struct FrontEndResult {
   std::vector<FeatureObservation> features;  // sorted by keyframe (nav order), then landmark
-  std::vector<FrontEndKeyframe> keyframes;   // nav order
+  std::vector<FrontEndKeyframe> keyframes;   // nav order (features.keyframe -> index: KeyframeIndex)
   std::vector<FrontEndPair> pairs;           // the match graph
   int landmarks = 0;                         // tracks written (ids 0 .. landmarks-1)
   int refused_merges = 0;                    // links refused: would put two features of one image in a track
   int dropped_tracks = 0;                    // tracks seen in fewer than min_keyframes keyframes
   double seconds = 0;
+
+  // Index into `keyframes` of a keyframe id (-1: none).
+  int KeyframeIndex(std::int64_t keyframe) const;
 };
 
 // Runs the front end on every image of a version 2 bundle (bundle.images).

@@ -222,6 +222,8 @@ PairMatches MatchKeyframes(const KeyframeView& a, const KeyframeView& b, const C
     putative = OneToOne(m, b.top.size());
   }
   r.putative = static_cast<int>(putative.size());
+  r.putative_matches = putative;
+  r.putative_inlier.assign(putative.size(), 0);
   if (r.putative < o.min_inliers) {
     r.note = "too few putative matches";
     return r;
@@ -288,6 +290,7 @@ PairMatches MatchKeyframes(const KeyframeView& a, const KeyframeView& b, const C
       }
     }
   }
+  r.putative_inlier = mask;
   if (r.inliers < o.min_inliers) {
     r.note = "too few RANSAC inliers";
     return r;

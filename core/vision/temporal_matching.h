@@ -46,6 +46,10 @@ struct PairMatches {
   std::string note;                    // why a pair was dropped
   Pose x_ca_cb;                        // estimated motion (mono: unit translation)
   std::vector<TemporalMatch> matches;  // RANSAC inliers (empty when not accepted)
+  // Every putative match (after the ratio test and one-to-one) with its
+  // RANSAC verdict (1: inlier); all 0 when RANSAC did not run (too few).
+  std::vector<TemporalMatch> putative_matches;
+  std::vector<char> putative_inlier;
 };
 
 PairMatches MatchKeyframes(const KeyframeView& a, const KeyframeView& b, const CameraRig& rig,

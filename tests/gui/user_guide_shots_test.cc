@@ -2,17 +2,20 @@
 // run with the models compared, the slab through the cylinder, and each
 // result view floated to a readable size. The grabs go to the test output
 // folder as user_guide_*.png; the guide's screenshots are copies of them.
+// The images view is shot on a small rendered version 2 survey.
 #include <QAction>
 #include <QDockWidget>
 #include <QStatusBar>
 #include <QTableView>
 
 #include "gui_test_support.h"
+#include "images_survey.h"
 #include "inspection_window.h"
 #include "ui/panels/layers_panel.h"
 #include "ui/panels/objects_panel.h"
 #include "ui/panels/sonar_panel.h"
 #include "ui/views/cross_section_view.h"
+#include "ui/views/images_view.h"
 #include "ui/views/keyframe_view.h"
 #include "ui/views/profile_canvas.h"
 #include "ui/views/scene_view.h"
@@ -87,6 +90,28 @@ class UserGuideShots : public QObject {
     win.w.sonarPanel()->SetStep(12);
     shoot(win.w.sonarPanel(), QSize(1280, 440), QStringLiteral("sonar"));
     QVERIFY(win.errors.isEmpty());
+  }
+
+  // A rendered stereo survey without features.csv: the features extracted
+  // on opening, the inspection run, one keyframe in the images view.
+  void theImagesViewAsTheUserGuideShowsIt() {
+    Window win;
+    QVERIFY(QTest::qWaitForWindowExposed(&win.w));
+    win.w.OpenPaths({hull::ui::testing::ImagesSurveyDir()});
+    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->frontEnd() && !win.w.jobs()->IsBusy(), 180000);
+    win.w.action(QStringLiteral("runInspection"))->trigger();
+    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->adjustment() && !win.w.jobs()->IsBusy(), 300000);
+    QVERIFY2(win.errors.isEmpty(), qPrintable(win.errors.join('\n')));
+    ImagesView* view = win.w.imagesView();
+    view->ShowKeyframe(4);
+    auto* dock = qobject_cast<QDockWidget*>(view->parentWidget());
+    QVERIFY(dock);
+    dock->setFloating(true);
+    dock->resize(1000, 820);
+    dock->show();
+    dock->raise();
+    QTest::qWait(400);
+    QVERIFY(win.w.GrabView(view).save(OutputDir() + QStringLiteral("/user_guide_images.png")));
   }
 };
 

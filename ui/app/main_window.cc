@@ -25,6 +25,7 @@
 #include "ui/app/app_setup.h"
 #include "ui/app/recent_files.h"
 #include "ui/controllers/document_controller.h"
+#include "ui/controllers/front_end_controller.h"
 #include "ui/controllers/inspection_controller.h"
 #include "ui/jobs/job_runner.h"
 #include "ui/jobs/job_status_widget.h"
@@ -58,6 +59,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   jobs_ = new JobRunner(this);
   documents_ = new DocumentController(session_, jobs_, this);
   inspection_ = new InspectionController(session_, jobs_, this);
+  front_end_ = new FrontEndController(session_, jobs_, this);
   recent_ = new RecentFiles(this);
 
   scene_ = new SceneView(this);
@@ -67,9 +69,11 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   CreateDocks();
   CreateResultDocks();
+  CreateImagesDock();
   CreateMenus();
   ConnectSession();
   ConnectResults();
+  ConnectImages();
 
   results_label_ = new QLabel(this);
   results_label_->setObjectName(QStringLiteral("resultsLabel"));

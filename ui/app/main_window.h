@@ -25,6 +25,8 @@ namespace hull::ui {
 
 class CrossSectionView;
 class DocumentController;
+class FrontEndController;
+class ImagesView;
 class InspectionController;
 class JobRunner;
 class JobStatusWidget;
@@ -83,6 +85,8 @@ class MainWindow : public QMainWindow {
   JobRunner* jobs() const { return jobs_; }
   DocumentController* documents() const { return documents_; }
   InspectionController* inspection() const { return inspection_; }
+  FrontEndController* frontEnd() const { return front_end_; }
+  ImagesView* imagesView() const { return images_; }
   SceneView* sceneView() const { return scene_; }
   LayersPanel* layersPanel() const { return layers_; }
   ParameterPanel* parameterPanel() const { return parameters_; }
@@ -113,6 +117,11 @@ class MainWindow : public QMainWindow {
   void CreateResultDocks();
   void ConnectResults();
   void CreateInspectionMenu();
+  // The images view and the feature extraction (main_window_images.cc).
+  void CreateImagesDock();
+  void ConnectImages();
+  void AddImagesEntries(QMenu* inspect);
+  void UpdateImagesActions();
   void AddResultFileEntries(QMenu* file);
   void AddResultExportEntries(QMenu* exports);
   void AddResultHelpEntries(QMenu* help);
@@ -142,6 +151,9 @@ class MainWindow : public QMainWindow {
   JobRunner* jobs_ = nullptr;
   DocumentController* documents_ = nullptr;
   InspectionController* inspection_ = nullptr;
+  FrontEndController* front_end_ = nullptr;
+  ImagesView* images_ = nullptr;
+  QDockWidget* images_dock_ = nullptr;
   RecentFiles* recent_ = nullptr;
   SceneView* scene_ = nullptr;
   LayersPanel* layers_ = nullptr;

@@ -169,6 +169,7 @@ void MainWindow::CreateInspectionMenu() {
       QStringLiteral("Also run the naive and all-on-surface models, for the cross-section and "
                      "the solver plots"));
   inspect->addAction(compare);
+  AddImagesEntries(inspect);
   inspect->addAction(NewAction(
       QStringLiteral("cancelJobs"), QStringLiteral("C&ancel"), jobs_, [this] { jobs_->CancelAll(); },
       QKeySequence(Qt::Key_Escape)));
@@ -211,6 +212,7 @@ void MainWindow::UpdateResultActions() {
   if (QAction* a = action(QStringLiteral("runInspection"))) a->setEnabled(inspection_->CanRun());
   if (QAction* a = action(QStringLiteral("compareModels"))) a->setEnabled(inspection_->CanCompare());
   if (QAction* a = action(QStringLiteral("cancelJobs"))) a->setEnabled(jobs_->IsBusy());
+  UpdateImagesActions();
   for (const char* name : {"exportModel", "exportObjects", "exportZones"}) {
     if (QAction* a = action(QString::fromLatin1(name))) a->setEnabled(exporter_ && exporter_->CanExport());
   }

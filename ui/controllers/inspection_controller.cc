@@ -58,14 +58,18 @@ QString ModelTitle(SurfaceModel m) {
 
 InspectionController::InspectionController(Session* session, JobRunner* jobs, QObject* parent)
     : QObject(parent), session_(session), jobs_(jobs), values_(DefaultValues(DefaultParameterTable())) {
-  connect(session_, &Session::meshChanged, this, &InspectionController::ResetForInputs);
-  connect(session_, &Session::surveyChanged, this, &InspectionController::ResetForInputs);
+  connect(session_, &Session::meshChanged, this, [this] { ResetForInputs(); });
+  connect(session_, &Session::surveyChanged, this, [this] { ResetForInputs(); });
+  connect(session_, &Session::featuresChanged, this, [this] {
+    ResetForInputs(true);
+    if (active_) Update();
+  });
   connect(jobs_, &JobRunner::jobStarted, this, [this] { emit stateChanged(); });
   connect(jobs_, &JobRunner::jobCancelled, this, [this] { emit stateChanged(); });
   connect(jobs_, &JobRunner::jobFailed, this, [this] { emit stateChanged(); });
 }
 
-void InspectionController::ResetForInputs() {
+void InspectionController::ResetForInputs(bool keep_active) {
   ++generation_;
   jobs_->Cancel(kAdjustJob);
   jobs_->Cancel(kCompareJob);
@@ -77,7 +81,7 @@ void InspectionController::ResetForInputs() {
   map_order_.clear();
   mappers_.clear();
   mapper_order_.clear();
-  active_ = false;
+  active_ = active_ && keep_active;
   emit stateChanged();
 }
 
@@ -99,6 +103,7 @@ void InspectionController::Run() {
   if (!CanRun()) return;
   active_ = true;
   Update();
+  emit stateChanged();
 }
 
 bool InspectionController::UpToDate() const {
@@ -108,6 +113,7 @@ bool InspectionController::UpToDate() const {
 
 QString InspectionController::StatusText() const {
   const auto& run = session_->adjustment();
+  if (!run && active_ && session_->NeedsFeatureExtraction()) return QStringLiteral("Waiting for the image features…");
   if (!run) return active_ ? QStringLiteral("Adjusting…") : QString();
   const AdjustmentResult& r = *run->result;
   QString text = QStringLiteral("%1: %2 iterations, %3 s, %4 % of the features on the hull")
@@ -168,7 +174,7 @@ void InspectionController::Update() {
 }
 
 void InspectionController::StartAdjustment() {
-  if (!CanRun()) return;
+  if (!CanRun() || session_->NeedsFeatureExtraction()) return;  // featuresChanged starts it
   const std::string key = AdjustmentKey(values_).toStdString();
   const AdjustmentOptions options = AdjustmentOptionsFrom(values_);
   std::shared_ptr<const PipelineInputs> inputs = inputs_;

@@ -14,6 +14,10 @@
 // the re-run is instant). A newer run supersedes an older one (JobRunner); a
 // cancelled or failed run leaves the last good result in the Session, and
 // UpToDate() turns false until the parameters are run again.
+//
+// A survey whose features come from its images (FrontEndController) runs
+// once they are there: Run() before then waits for them, and new features
+// (other front-end parameters) drop the cached results and re-run.
 #pragma once
 
 #include <QObject>
@@ -69,7 +73,8 @@ class InspectionController : public QObject {
   void stateChanged();
 
  private:
-  void ResetForInputs();
+  // keep_active: the features changed, the survey did not (re-run if active).
+  void ResetForInputs(bool keep_active = false);
   void Update();
   void StartAdjustment();
   std::shared_ptr<const AdjustmentRun> Cached(const std::string& key) const;

@@ -2,6 +2,8 @@
 
 #include <QStringList>
 #include <cmath>
+#include <functional>
+#include <utility>
 
 #include "base/error.h"
 #include "mapping/mapping_options.h"
@@ -15,6 +17,7 @@ using Stage = ParameterDescriptor::Stage;
 const QString kAdjust = QStringLiteral("Bundle adjustment");
 const QString kSolver = QStringLiteral("Solver limits");
 const QString kMap = QStringLiteral("Mapping");
+const QString kFront = QStringLiteral("Visual front end");
 
 ParameterDescriptor Real(QString key, QString group, Stage stage, QString label, double min, double max, double def,
                          int decimals, double step, QString unit, QString tooltip) {
@@ -60,6 +63,50 @@ ParameterDescriptor Choice(QString key, QString group, Stage stage, QString labe
 }
 
 const SurfaceModel kModels[] = {SurfaceModel::kNaive, SurfaceModel::kAllOnSurface, SurfaceModel::kMaxMixture};
+
+// The visual front end (core/vision/vision_options.h): only used for
+// surveys whose features come from their images.
+void AddFrontEndFields(ParameterTable& t) {
+  const FrontEndOptions f;
+  const Stage s = Stage::kFrontEnd;
+  t.push_back(Integer(QStringLiteral("fe_max_features"), kFront, s, QStringLiteral("SIFT features per image"), 0,
+                      100000, f.detection.max_features,
+                      QStringLiteral("SIFT keeps the strongest this many features per image (0: all).")));
+  t.push_back(Real(QStringLiteral("fe_contrast_threshold"), kFront, s, QStringLiteral("SIFT contrast threshold"), 0.001,
+                   0.5, f.detection.contrast_threshold, 3, 0.005, {},
+                   QStringLiteral("SIFT's contrast threshold: lower finds more, weaker features.")));
+  t.push_back(Choice(QStringLiteral("fe_clahe"), kFront, s, QStringLiteral("CLAHE"),
+                     {QStringLiteral("on"), QStringLiteral("off")}, {QStringLiteral("On"), QStringLiteral("Off")},
+                     f.detection.clahe ? 0 : 1,
+                     QStringLiteral("Contrast-limited adaptive histogram equalisation before SIFT, for the uneven "
+                                    "strobe lighting.")));
+  t.push_back(Real(QStringLiteral("fe_clahe_clip"), kFront, s, QStringLiteral("CLAHE clip limit"), 0.1, 40.0,
+                   f.detection.clahe_clip, 2, 0.5, {},
+                   QStringLiteral("CLAHE's cap on the contrast amplification (higher: more contrast and noise).")));
+  t.push_back(Real(QStringLiteral("fe_epipolar_tolerance"), kFront, s, QStringLiteral("Stereo epipolar tolerance"), 0.1,
+                   50.0, f.stereo.epipolar_tolerance, 2, 0.5, QStringLiteral("px"),
+                   QStringLiteral("Greatest distance of a bottom feature from the top feature's epipolar line.")));
+  t.push_back(Real(QStringLiteral("fe_stereo_ratio"), kFront, s, QStringLiteral("Stereo ratio test"), 0.05, 1.0,
+                   f.stereo.ratio, 2, 0.05, {},
+                   QStringLiteral("Lowe's ratio for top↔bottom matches: best / second-best descriptor distance.")));
+  t.push_back(Integer(QStringLiteral("fe_neighbours"), kFront, s, QStringLiteral("Keyframes matched ahead"), 1, 50,
+                      f.temporal.neighbours,
+                      QStringLiteral("Each keyframe is matched with this many following keyframes.")));
+  t.push_back(Real(QStringLiteral("fe_window"), kFront, s, QStringLiteral("Search window"), 1.0, 1000.0,
+                   f.temporal.window, 1, 5.0, QStringLiteral("px"),
+                   QStringLiteral("Radius around the position the navigation prior predicts in which a temporal "
+                                  "match is searched (covers the navigation error).")));
+  t.push_back(Real(QStringLiteral("fe_temporal_ratio"), kFront, s, QStringLiteral("Temporal ratio test"), 0.05, 1.0,
+                   f.temporal.ratio, 2, 0.05, {},
+                   QStringLiteral("Lowe's ratio among the candidates in the search window.")));
+  t.push_back(Real(QStringLiteral("fe_ransac_threshold"), kFront, s, QStringLiteral("RANSAC threshold"), 0.05, 50.0,
+                   f.temporal.ransac_threshold, 2, 0.25, QStringLiteral("px"),
+                   QStringLiteral("Inlier reprojection error (stereo) or Sampson distance (mono) in RANSAC.")));
+  t.push_back(Integer(QStringLiteral("fe_min_inliers"), kFront, s, QStringLiteral("Min. inliers per pair"), 5, 10000,
+                      f.temporal.min_inliers, QStringLiteral("A keyframe pair with fewer RANSAC inliers is dropped.")));
+  t.push_back(Integer(QStringLiteral("fe_min_keyframes"), kFront, s, QStringLiteral("Min. keyframes per track"), 2,
+                      1000, f.tracks.min_keyframes, QStringLiteral("Tracks seen in fewer keyframes are dropped.")));
+}
 
 ParameterTable MakeTable() {
   const AdjustmentOptions a;
@@ -119,6 +166,7 @@ ParameterTable MakeTable() {
   t.push_back(Real(QStringLiteral("object_min_area"), kMap, Stage::kMapping, QStringLiteral("Object min. area"), 0.0,
                    10.0, m.object_min_area, 3, 0.005, QStringLiteral("m²"),
                    QStringLiteral("... over at least this footprint area.")));
+  AddFrontEndFields(t);
   return t;
 }
 
@@ -180,8 +228,46 @@ std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values
   } catch (const OptionError& e) {
     errors.push_back({QString::fromStdString(e.field()), QString::fromStdString(e.what())});
   }
+  // The front end's structs name their own fields ("ratio" twice): mapped
+  // back to the table's keys.
+  const FrontEndOptions f = FrontEndOptionsFrom(values);
+  const std::pair<std::function<void()>, QString> checks[] = {
+      {[&] { f.detection.Check(); }, QStringLiteral("fe_")},
+      {[&] { f.stereo.Check(); }, QStringLiteral("fe_stereo_")},
+      {[&] { f.temporal.Check(); }, QStringLiteral("fe_temporal_")},
+      {[&] { f.tracks.Check(); }, QStringLiteral("fe_")}};
+  for (const auto& [check, prefix] : checks) {
+    try {
+      check();
+    } catch (const OptionError& e) {
+      QString key = prefix + QString::fromStdString(e.field());
+      if (!FindParameter(DefaultParameterTable(), key)) key = QStringLiteral("fe_") + QString::fromStdString(e.field());
+      errors.push_back({key, QString::fromStdString(e.what())});
+    }
+  }
   return errors;
 }
+
+FrontEndOptions FrontEndOptionsFrom(const ParameterValues& values) {
+  FrontEndOptions o;
+  auto real = [&](const char* key, double& field) { field = values.value(QLatin1String(key), field).toDouble(); };
+  auto integer = [&](const char* key, int& field) { field = values.value(QLatin1String(key), field).toInt(); };
+  integer("fe_max_features", o.detection.max_features);
+  real("fe_contrast_threshold", o.detection.contrast_threshold);
+  o.detection.clahe = values.value(QStringLiteral("fe_clahe"), QStringLiteral("on")).toString() != QLatin1String("off");
+  real("fe_clahe_clip", o.detection.clahe_clip);
+  real("fe_epipolar_tolerance", o.stereo.epipolar_tolerance);
+  real("fe_stereo_ratio", o.stereo.ratio);
+  integer("fe_neighbours", o.temporal.neighbours);
+  real("fe_window", o.temporal.window);
+  real("fe_temporal_ratio", o.temporal.ratio);
+  real("fe_ransac_threshold", o.temporal.ransac_threshold);
+  integer("fe_min_inliers", o.temporal.min_inliers);
+  integer("fe_min_keyframes", o.tracks.min_keyframes);
+  return o;
+}
+
+QString FrontEndKey(const ParameterValues& values) { return StageText(values, Stage::kFrontEnd); }
 
 AdjustmentOptions AdjustmentOptionsFrom(const ParameterValues& values) {
   AdjustmentOptions o;

@@ -11,6 +11,7 @@
 #include "adjust/adjust_options.h"
 #include "mapping/mapping_options.h"
 #include "ui/session/parameters.h"
+#include "vision/vision_options.h"
 
 namespace hull::ui {
 
@@ -25,6 +26,8 @@ SurfaceModel ModelFromKey(const QString& key);  // max-mixture for an unknown ke
 // defaults.
 AdjustmentOptions AdjustmentOptionsFrom(const ParameterValues& values);
 MappingOptions MappingOptionsFrom(const ParameterValues& values);
+// The visual front end's options (group "Visual front end", keys "fe_...").
+FrontEndOptions FrontEndOptionsFrom(const ParameterValues& values);
 
 // A canonical text of the values of one stage, for caching results per
 // parameter set. For the adjustment, fields the model ignores are left out
@@ -34,6 +37,8 @@ MappingOptions MappingOptionsFrom(const ParameterValues& values);
 QString AdjustmentKey(const ParameterValues& values);
 // AdjustmentKey plus the mapping fields: a mapping result depends on both.
 QString MappingKey(const ParameterValues& values);
+// The front end's fields: extracted features are cached per this key.
+QString FrontEndKey(const ParameterValues& values);
 
 // The values with the model replaced (for the comparison runs).
 ParameterValues WithModel(const ParameterValues& values, SurfaceModel model);

@@ -17,9 +17,11 @@ namespace hull::ui {
 
 struct ParameterDescriptor {
   enum class Type { kReal, kInteger, kChoice };
-  // What a change of the field re-runs: the bundle adjustment (and mapping
-  // after it), mapping only, or nothing (display-only fields).
-  enum class Stage { kAdjustment, kMapping, kNone };
+  // What a change of the field re-runs: the visual front end (feature
+  // extraction from the images, then everything after it), the bundle
+  // adjustment (and mapping after it), mapping only, or nothing
+  // (display-only fields).
+  enum class Stage { kFrontEnd, kAdjustment, kMapping, kNone };
 
   QString key;    // stable name: project files, later the options field
   QString group;  // panel section ("Adjustment", "Mapping", ...)
@@ -53,7 +55,8 @@ using ParameterTable = std::vector<ParameterDescriptor>;
 
 // The model-assisted bundle adjustment and mapping parameters of Ozog et al.
 // (sigma0, sigma1, surface model, tau, alpha, DBSCAN epsilon and minimum
-// points, solver limits), bound to the core options structs: their defaults
+// points, solver limits) and the visual front end's (ratio tests, CLAHE,
+// RANSAC, search window), bound to the core options structs: their defaults
 // are the structs' defaults (see inspection_parameters.h).
 const ParameterTable& DefaultParameterTable();
 ParameterValues DefaultValues(const ParameterTable& table);

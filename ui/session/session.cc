@@ -16,6 +16,7 @@ void Session::SetMesh(LoadedMesh mesh) {
 void Session::SetSurvey(LoadedSurvey survey, std::optional<ModelPlacement> preferred) {
   ClearResults();
   survey_ = std::move(survey);
+  front_end_.reset();
   const std::vector<ModelPlacement> available = AvailablePlacements();
   const ModelPlacement old = placement_;
   if (preferred && std::find(available.begin(), available.end(), *preferred) != available.end()) {
@@ -38,6 +39,7 @@ void Session::ClearSurvey() {
   if (!survey_) return;
   ClearResults();
   survey_.reset();
+  front_end_.reset();
   const ModelPlacement old = placement_;
   placement_ = ModelPlacement::kIdentity;
   emit surveyChanged();
@@ -105,6 +107,24 @@ void Session::ClearResults() {
   SetAdjustment(nullptr);
   SetAlignment(nullptr);
   if (had_runs) emit modelRunsChanged();
+}
+
+bool Session::HasImages() const {
+  const SurveyBundle* b = bundle();
+  return b && b->images && b->images->present() > 0;
+}
+
+bool Session::NeedsFeatureExtraction() const { return HasImages() && bundle()->features.empty(); }
+
+void Session::SetExtractedFeatures(std::shared_ptr<const SurveyBundle> bundle,
+                                   std::shared_ptr<const SurveyOverlays> overlays,
+                                   std::shared_ptr<const FrontEndResult> front_end) {
+  if (!survey_) return;
+  ClearResults();
+  survey_->bundle = std::move(bundle);
+  survey_->overlays = std::move(overlays);
+  front_end_ = std::move(front_end);
+  emit featuresChanged();
 }
 
 void Session::SetProjectPath(const QString& path) {

@@ -19,6 +19,7 @@
 #include "survey/survey.h"
 #include "ui/session/inspection_results.h"
 #include "ui/session/survey_overlays.h"
+#include "vision/front_end.h"
 
 namespace hull::ui {
 
@@ -73,6 +74,19 @@ class Session : public QObject {
   void SetMapping(std::shared_ptr<const MappingRun> run);
   void ClearResults();
 
+  // What the visual front end found in the survey's images (nullptr: the
+  // features came with the bundle, or none extracted yet), and whether the
+  // open survey still needs it: images and no feature observations.
+  const std::shared_ptr<const FrontEndResult>& frontEnd() const { return front_end_; }
+  bool NeedsFeatureExtraction() const;
+  bool HasImages() const;
+  // Puts extracted features into the survey: `bundle` is the open survey's
+  // bundle with the front end's observations, `overlays` computed from it.
+  // Drops the results (they were computed from other features) and emits
+  // featuresChanged, not surveyChanged: the survey is the same.
+  void SetExtractedFeatures(std::shared_ptr<const SurveyBundle> bundle, std::shared_ptr<const SurveyOverlays> overlays,
+                            std::shared_ptr<const FrontEndResult> front_end);
+
   // The project file this session was last saved to or opened from ("" if none).
   const QString& projectPath() const { return project_path_; }
   void SetProjectPath(const QString& path);
@@ -86,6 +100,7 @@ class Session : public QObject {
   void adjustmentChanged();
   void modelRunsChanged();
   void mappingChanged();
+  void featuresChanged();
 
  private:
   std::optional<LoadedMesh> mesh_;
@@ -96,6 +111,7 @@ class Session : public QObject {
   std::shared_ptr<const AdjustmentRun> adjustment_;
   ModelRuns model_runs_;
   std::shared_ptr<const MappingRun> mapping_;
+  std::shared_ptr<const FrontEndResult> front_end_;
 };
 
 }  // namespace hull::ui

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -101,6 +102,79 @@ TEST(FrontEnd, StereoBundleToFeaturesCsvAndBack) {
   }
 }
 
+// What the front end returns per keyframe and pair for the GUI's images
+// view agrees with its counts and with the observations it wrote.
+void ExpectDetailsMatchCounts(const FrontEndResult& r) {
+  for (const FrontEndKeyframe& k : r.keyframes) {
+    ASSERT_EQ(static_cast<int>(k.top_points.size()), k.top_features) << "keyframe " << k.keyframe;
+    ASSERT_EQ(k.top_sizes.size(), k.top_points.size());
+    ASSERT_EQ(static_cast<int>(k.bottom_points.size()), k.bottom_features);
+    ASSERT_EQ(static_cast<int>(k.stereo.size()), k.stereo_matches);
+    ASSERT_EQ(k.landmark.size(), k.top_points.size());
+    EXPECT_EQ(static_cast<int>(std::count_if(k.landmark.begin(), k.landmark.end(), [](auto l) { return l >= 0; })),
+              k.tracked);
+    for (const FrontEndStereoLink& s : k.stereo) {
+      ASSERT_GE(s.top, 0);
+      ASSERT_LT(s.top, k.top_features);
+      ASSERT_GE(s.bottom, 0);
+      ASSERT_LT(s.bottom, k.bottom_features);
+    }
+  }
+  for (const FrontEndPair& p : r.pairs) {
+    ASSERT_EQ(static_cast<int>(p.matches.size()), p.putative) << p.from << "-" << p.to;
+    EXPECT_EQ(static_cast<int>(std::count_if(p.matches.begin(), p.matches.end(), [](auto m) { return m.inlier; })),
+              p.inliers)
+        << p.from << "-" << p.to;
+    const int a = r.KeyframeIndex(p.from), b = r.KeyframeIndex(p.to);
+    ASSERT_GE(a, 0);
+    ASSERT_GE(b, 0);
+    for (const FrontEndMatch& m : p.matches) {
+      ASSERT_LT(m.a, r.keyframes[static_cast<std::size_t>(a)].top_features);
+      ASSERT_LT(m.b, r.keyframes[static_cast<std::size_t>(b)].top_features);
+    }
+  }
+  // Each observation is the top feature its keyframe lists for that landmark.
+  for (const FeatureObservation& f : r.features) {
+    const int k = r.KeyframeIndex(f.keyframe);
+    ASSERT_GE(k, 0);
+    const FrontEndKeyframe& kf = r.keyframes[static_cast<std::size_t>(k)];
+    const auto it = std::find(kf.landmark.begin(), kf.landmark.end(), f.landmark);
+    ASSERT_NE(it, kf.landmark.end()) << "landmark " << f.landmark << " in keyframe " << f.keyframe;
+    EXPECT_EQ(kf.top_points[static_cast<std::size_t>(it - kf.landmark.begin())], f.top);
+  }
+}
+
+TEST(FrontEnd, ReturnsFeaturesMatchesAndVerdictsPerKeyframe) {
+  const VisionScene s = MakeVisionScene(true, true, 4);
+  const ScratchDir dir("vision_details");
+  WriteSceneBundle(s, dir.path());
+  const SurveyBundle b = ReadSurveyBundle(dir.path());
+  NullProgress progress;
+  const FrontEndResult r = RunFrontEnd(b, FrontEndOptions{}, progress);
+  ExpectDetailsMatchCounts(r);
+  int inliers = 0, unverified = 0;
+  for (const FrontEndKeyframe& k : r.keyframes) {
+    for (const FrontEndStereoLink& l : k.stereo) {
+      inliers += l.verdict == MatchVerdict::kInlier;
+      unverified += l.verdict == MatchVerdict::kUnverified;
+    }
+  }
+  EXPECT_GT(inliers, 100);
+  EXPECT_GT(unverified, 0);  // the first keyframe's features leaving the view
+  EXPECT_EQ(r.KeyframeIndex(s.nav[2].keyframe), 2);
+  EXPECT_EQ(r.KeyframeIndex(-5), -1);
+  // A strict RANSAC threshold leaves outliers among the putative matches.
+  FrontEndOptions strict;
+  strict.temporal.ransac_threshold = 0.3;
+  const FrontEndResult t = RunFrontEnd(b, strict, progress);
+  ExpectDetailsMatchCounts(t);
+  int rejected = 0;
+  for (const FrontEndPair& p : t.pairs) {
+    for (const FrontEndMatch& m : p.matches) rejected += !m.inlier;
+  }
+  EXPECT_GT(rejected, 0);
+}
+
 TEST(FrontEnd, MonoBundle) {
   const VisionScene s = MakeVisionScene(false, true, 4);
   const ScratchDir dir("vision_mono");
@@ -114,6 +188,7 @@ TEST(FrontEnd, MonoBundle) {
   for (const auto& p : r.pairs) EXPECT_TRUE(p.accepted && !p.stereo) << p.from << "-" << p.to << ": " << p.note;
   for (const auto& f : r.features) EXPECT_FALSE(f.has_bottom);
   EXPECT_GE(TrackConsistency(s, r.features), 0.95);
+  ExpectDetailsMatchCounts(r);
 }
 
 TEST(FrontEnd, RefusesBundlesWithoutImagesAndStopsOnCancel) {
