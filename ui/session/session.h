@@ -15,6 +15,7 @@
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
+#include "mapping/survey_compare.h"
 #include "registration/model_alignment.h"
 #include "survey/survey.h"
 #include "ui/session/inspection_results.h"
@@ -72,6 +73,10 @@ class Session : public QObject {
   const std::shared_ptr<const MappingRun>& mapping() const { return mapping_; }
   void SetMapping(std::shared_ptr<const MappingRun> run);
   void ClearResults();
+  // The comparison of two surveys on screen (nullptr: none). Independent of
+  // the survey open: opening another survey keeps it.
+  const std::shared_ptr<const SurveyComparisonRun>& comparison() const { return comparison_; }
+  void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
 
   // The project file this session was last saved to or opened from ("" if none).
   const QString& projectPath() const { return project_path_; }
@@ -86,6 +91,7 @@ class Session : public QObject {
   void adjustmentChanged();
   void modelRunsChanged();
   void mappingChanged();
+  void comparisonChanged();
 
  private:
   std::optional<LoadedMesh> mesh_;
@@ -96,6 +102,7 @@ class Session : public QObject {
   std::shared_ptr<const AdjustmentRun> adjustment_;
   ModelRuns model_runs_;
   std::shared_ptr<const MappingRun> mapping_;
+  std::shared_ptr<const SurveyComparisonRun> comparison_;
 };
 
 }  // namespace hull::ui
