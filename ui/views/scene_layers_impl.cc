@@ -103,7 +103,16 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
       p->SetDiffuse(0.7);
       p->SetSpecular(0.0);
       actor->PickableOff();
-      MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 8.0);
+      // All draw the same surface: the deviation heatmap furthest back, so
+      // that a sigma, significance or change layer switched on with it wins
+      // (and points and lines on the surface stay in front of them all).
+      if (layer == SceneLayer::kHeatmap) {
+        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 8.0);
+      } else if (layer == SceneLayer::kHeightChange) {
+        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(1.0, 2.0);
+      } else {
+        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(1.5, 5.0);
+      }
       break;
     case SceneLayer::kAlphaShapes:
       Colour(p, kShapeWhite);
