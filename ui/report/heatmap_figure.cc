@@ -226,10 +226,10 @@ class HeatmapFigure final : public Figure {
         DrawColourBar(p, bar, range_, QStringLiteral("change in height since survey A (m)"));
         break;
       case FigureKind::kSignificanceHeatmap:
-        DrawColourBar(p, bar, range_, QStringLiteral("significant deviation (m)"));
+        DrawColourBar(p, bar, range_, QStringLiteral("deviation (m)"));
         DrawLegendRow(
-            p, QRectF(kMargin + 170, bar.top() - 2, 200, 16),
-            {{QColor(0xb4, 0xb4, 0xb4), QStringLiteral("|h| ≤ %1 σ: not significant").arg(significance_k_, 0, 'g', 3),
+            p, QRectF(kMargin + 200, bar.top() - 2, 190, 16),
+            {{QColor(0xb4, 0xb4, 0xb4), QStringLiteral("not significant: |h| ≤ %1 σ").arg(significance_k_, 0, 'g', 3),
               LegendEntry::Mark::kBox}});
         break;
       default:

@@ -70,10 +70,11 @@ SceneViewImpl::SceneViewImpl() {
   legend_->SetNanAnnotation("not significant");
   renderer_->AddViewProp(legend_);
   sigma_lut_ = MakeSequentialLut();
-  sigma_legend_ = MakeLegend(sigma_lut_, "σ (mm)", "%.1f");
+  // VTK's embedded fonts have no Greek letters: "sigma" spelled out.
+  sigma_legend_ = MakeLegend(sigma_lut_, "sigma (mm)", "%.1f");
   renderer_->AddViewProp(sigma_legend_);
   change_lut_ = MakeDivergingLut();
-  change_legend_ = MakeLegend(change_lut_, "Height change (m)", "%+.3f");
+  change_legend_ = MakeLegend(change_lut_, "Change (m)", "%+.3f");
   renderer_->AddViewProp(change_legend_);
 
   picker_ = vtkSmartPointer<vtkPointPicker>::New();
@@ -172,7 +173,7 @@ void SceneViewImpl::UpdateSignificance() {
   for (const double h : mask) significant_vertices_ += !std::isnan(h);
   SetPointArray(data, "significant_deviation", mask);
   legend_->SetNanAnnotation(
-      QStringLiteral("|h| ≤ %1σ").arg(QString::number(significance_k_, 'g', 3)).toUtf8().constData());
+      QStringLiteral("|h| <= %1 sigma").arg(QString::number(significance_k_, 'g', 3)).toUtf8().constData());
 }
 
 void SceneViewImpl::SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison) {
