@@ -307,6 +307,30 @@ class TrustViewsTest : public QObject {
     Check(table, QStringLiteral("view_change_table"), 0.03);
   }
 
+  void compareWithTheMappingOnScreen() {
+    const ComparePair pair = WriteComparePair();
+    Window win;
+    QVERIFY(QTest::qWaitForWindowExposed(&win.w));
+    const auto& survey = MakeSyntheticSurvey();
+    QVERIFY(!win.w.surveyCompare()->CanCompareWithMapping());
+    win.w.session()->SetMesh({QStringLiteral("synthetic-hull.ply"), survey.mesh});
+    win.w.session()->SetMapping(SyntheticMapping());
+    QVERIFY(win.w.surveyCompare()->CanCompareWithMapping());
+    // A's folder holds the same mapping as the one on screen: nothing changed.
+    win.w.surveyCompare()->CompareWithMapping(pair.a);
+    HI_WAIT_IDLE(win.w.jobs(), 60000);
+    QVERIFY2(win.errors.isEmpty(), qPrintable(win.errors.join(QLatin1Char('\n'))));
+    const auto& comparison = win.w.session()->comparison();
+    QVERIFY(comparison);
+    QCOMPARE(comparison->comparison.objects.size(), SyntheticMapping()->result->objects.size());
+    for (const hull::ObjectChange& c : comparison->comparison.objects) {
+      QCOMPARE(c.kind, hull::ObjectChangeKind::kUnchanged);
+      QVERIFY(std::abs(c.change) < 1e-12);
+    }
+    QCOMPARE(comparison->comparison.significant_vertices, std::size_t(0));
+    QVERIFY(win.w.sceneView()->Stats(SceneLayer::kHeightChange).visible);
+  }
+
   void compareRefusesAFolderWithoutResults() {
     Window win;
     QVERIFY(QTest::qWaitForWindowExposed(&win.w));
