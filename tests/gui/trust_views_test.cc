@@ -278,6 +278,10 @@ class TrustViewsTest : public QObject {
     QCOMPARE(panel->table()->model()->rowCount(), static_cast<int>(comparison->comparison.objects.size()));
     QVERIFY(panel->summaryText().contains(QStringLiteral("1 new, 1 grown, 0 shrunk, 1 removed")));
     QVERIFY(panel->isVisible());
+    // The whole window, to look at (not compared with a baseline: the docks'
+    // sizes follow the platform's fonts).
+    Settle(&win.w);
+    QVERIFY(win.w.grab().save(OutputDir() + QStringLiteral("/main_window_compare.png")));
 
     // The views, at fixed sizes.
     SceneView view;
