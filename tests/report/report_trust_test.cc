@@ -18,6 +18,7 @@
 #include "mapping/vertex_significance.h"
 #include "report_fixture.h"
 #include "ui/report/figures.h"
+#include "ui/report/headless_job.h"
 #include "ui/report/report.h"
 #include "ui/report/report_blocks.h"
 #include "ui/report/report_document.h"
@@ -154,6 +155,20 @@ TEST(ReportTrust, ChangeBetweenSurveysSection) {
                              "Uncertainty of the deviation", "Change in height since the earlier survey", "grown"}) {
     EXPECT_TRUE(pdf_text.contains(QString::fromLatin1(phrase))) << phrase;
   }
+}
+
+TEST(HeadlessCommand, CompareWithGoesWithReport) {
+  const HeadlessCommand c =
+      ParseHeadlessCommand({QStringLiteral("--report"), QStringLiteral("b"), QStringLiteral("--compare-with"),
+                            QStringLiteral("a"), QStringLiteral("--out"), QStringLiteral("o")});
+  EXPECT_TRUE(c.error.isEmpty()) << c.error.toStdString();
+  EXPECT_EQ(c.earlier, QStringLiteral("a"));
+  EXPECT_EQ(c.results, QStringLiteral("b"));
+  EXPECT_FALSE(ParseHeadlessCommand({QStringLiteral("--demo"), QStringLiteral("--compare-with"), QStringLiteral("a")})
+                   .error.isEmpty());
+  EXPECT_FALSE(ParseHeadlessCommand({QStringLiteral("--report"), QStringLiteral("b"), QStringLiteral("--out"),
+                                     QStringLiteral("o"), QStringLiteral("--compare-with")})
+                   .error.isEmpty());
 }
 
 }  // namespace
