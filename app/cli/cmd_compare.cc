@@ -1,6 +1,5 @@
 // hullinspect-cli compare: change between two surveys of one hull.
 #include <cstdio>
-#include <filesystem>
 
 #include "cli/args.h"
 #include "cli/commands.h"
@@ -32,9 +31,7 @@ options:
 )";
 
 std::string MappingFolder(const std::string& results) {
-  namespace fs = std::filesystem;
-  if (fs::exists(fs::path(results) / "model.ply")) return results;
-  if (fs::exists(fs::path(results) / "mapping" / "model.ply")) return (fs::path(results) / "mapping").string();
+  if (const auto f = FindMappingResults(results)) return *f;
   throw UsageError("'" + results + "' holds neither mapping results nor a pipeline's mapping/");
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <set>
@@ -25,6 +26,7 @@ struct ZoneAccumulator {
 
 struct Component {
   double area = 0, integral = 0, max_height = 0;
+  int peak = -1;  // the highest vertex
   Eigen::Vector3d first = Eigen::Vector3d::Zero();
   std::vector<int> vertices;
   std::map<int, ZoneAccumulator> zones;
@@ -40,6 +42,24 @@ double Percentile(std::vector<double> v, double q) {
   const std::size_t i = std::min(v.size() - 1, rank > 0 ? rank - 1 : 0);
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(i), v.end());
   return v[i];
+}
+
+// The sigma_h of the component's supporting landmark nearest to its highest
+// vertex (NaN when none has a sigma_h).
+double PeakSigma(const Component& c, const TriangleMesh& prior, const Pose& x_Mg, const MappingInput& input) {
+  double sigma = std::nan(""), best = std::numeric_limits<double>::infinity();
+  if (c.peak < 0) return sigma;
+  const Eigen::Vector3d& peak = prior.vertices[static_cast<std::size_t>(c.peak)];
+  for (const int l : c.landmarks) {
+    const MappingLandmark& m = input.landmarks[static_cast<std::size_t>(l)];
+    if (!(m.sigma_h > 0) || !std::isfinite(m.sigma_h)) continue;
+    const double d = (x_Mg * m.p_g - peak).squaredNorm();
+    if (d < best) {
+      best = d;
+      sigma = m.sigma_h;
+    }
+  }
+  return sigma;
 }
 
 }  // namespace
@@ -81,7 +101,10 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
     comp_of[static_cast<std::size_t>(v)] = it->second;
     Component& c = comps[static_cast<std::size_t>(it->second)];
     c.vertices.push_back(v);
-    c.max_height = std::max(c.max_height, deviation[static_cast<std::size_t>(v)]);
+    if (c.peak < 0 || deviation[static_cast<std::size_t>(v)] > c.max_height) {
+      c.max_height = deviation[static_cast<std::size_t>(v)];
+      c.peak = v;
+    }
   }
 
   // Footprints: each face clipped to where its interpolated deviation exceeds h_min.
@@ -170,6 +193,7 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
     std::vector<double> heights;
     for (const int v : c.vertices) heights.push_back(deviation[static_cast<std::size_t>(v)]);
     obj.p95_height = Percentile(heights, 0.95);
+    obj.max_height_sigma = PeakSigma(c, prior, x_Mg, input);
     obj.num_features = static_cast<int>(c.landmarks.size());
     obj.keyframes.assign(c.keyframes.begin(), c.keyframes.end());
     obj.num_views = static_cast<int>(obj.keyframes.size());

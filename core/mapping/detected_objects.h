@@ -4,6 +4,7 @@
 // zone (for the fouling assessment).
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,10 +31,14 @@ struct DetectedObject {
   HullSide side = HullSide::kBottom;
   // The footprint: the CAD-surface area where the fused deviation exceeds
   // h_min (linear interpolation over each face), and the heights over it.
-  double area = 0;                      // m^2
-  double mean_height = 0;               // m, area-weighted over the footprint
-  double max_height = 0;                // m, the highest fused vertex
-  double p95_height = 0;                // m, 95th percentile of the footprint's vertex heights (nearest rank)
+  double area = 0;         // m^2
+  double mean_height = 0;  // m, area-weighted over the footprint
+  double max_height = 0;   // m, the highest fused vertex
+  double p95_height = 0;   // m, 95th percentile of the footprint's vertex heights (nearest rank)
+  // m, the standard deviation of max_height: the sigma_h of the object's
+  // supporting feature (landmark over the footprint) nearest to its highest
+  // vertex; NaN when none of them has a sigma_h (docs/mapping.md, "Objects").
+  double max_height_sigma = std::nan("");
   int num_features = 0;                 // landmarks of this run's shapes lying over the footprint
   int num_views = 0;                    // keyframes whose shapes hold at least one of them
   std::vector<std::int64_t> keyframes;  // their ids, ascending

@@ -1,7 +1,9 @@
 #include "mapping/mapping_result.h"
 
+#include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 
 #include "base/atomic_directory.h"
 #include "base/csv.h"
@@ -52,7 +54,7 @@ Json OptionsJson(const MappingOptions& o) {
 
 void WriteObjects(const MappingResult& r, const std::string& dir) {
   CsvWriter csv({"id", "x", "y", "z", "nx", "ny", "nz", "distance_from_bow", "station", "side", "area", "mean_height",
-                 "max_height", "features", "views", "keyframes", "p95_height"});
+                 "max_height", "features", "views", "keyframes", "p95_height", "max_height_sigma"});
   Json list = Json::Array();
   for (const DetectedObject& o : r.objects) {
     csv.Add(o.id);
@@ -60,6 +62,7 @@ void WriteObjects(const MappingResult& r, const std::string& dir) {
     for (int k = 0; k < 3; ++k) csv.Add(o.normal_m[k]);
     csv.Add(o.distance_from_bow).Add(o.station).Add(HullSideName(o.side)).Add(o.area).Add(o.mean_height);
     csv.Add(o.max_height).Add(o.num_features).Add(o.num_views).Add(JoinIds(o.keyframes)).Add(o.p95_height);
+    csv.AddOptional(std::isfinite(o.max_height_sigma) ? std::optional<double>(o.max_height_sigma) : std::nullopt);
     csv.EndRow();
     Json j = Json::Object();
     j.Set("id", o.id);
@@ -72,6 +75,7 @@ void WriteObjects(const MappingResult& r, const std::string& dir) {
     j.Set("mean_height", o.mean_height);
     j.Set("max_height", o.max_height);
     j.Set("p95_height", o.p95_height);
+    if (std::isfinite(o.max_height_sigma)) j.Set("max_height_sigma", o.max_height_sigma);
     j.Set("features", o.num_features);
     j.Set("views", o.num_views);
     j.Set("keyframes", Json::ArrayOf(o.keyframes));

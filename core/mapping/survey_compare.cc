@@ -66,6 +66,14 @@ const char* ObjectChangeKindName(ObjectChangeKind k) {
 SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& model_a,
                                 const std::vector<DetectedObject>& objects_a, const TriangleMesh& model_b,
                                 const std::vector<DetectedObject>& objects_b, const SurveyCompareOptions& o) {
+  NullProgress progress;
+  return CompareSurveys(cad, model_a, objects_a, model_b, objects_b, o, progress);
+}
+
+SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& model_a,
+                                const std::vector<DetectedObject>& objects_a, const TriangleMesh& model_b,
+                                const std::vector<DetectedObject>& objects_b, const SurveyCompareOptions& o,
+                                Progress& progress) {
   o.Check();
   const std::vector<double>& dev_a = Deviation(model_a, "A");
   const std::vector<double>& dev_b = Deviation(model_b, "B");
@@ -77,7 +85,16 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
 
   // A's height field, keyed by where each vertex stands on the CAD.
   std::vector<Eigen::Vector3d> feet_a(model_a.num_vertices());
-  for (std::size_t i = 0; i < feet_a.size(); ++i) feet_a[i] = index.Closest(model_a.vertices[i]).point;
+  constexpr std::size_t kChunk = 4096;
+  const double total = static_cast<double>(model_a.num_vertices() + model_b.num_vertices()) + 1.0;
+  progress.Update(0.0, "placing survey A's model on the CAD");
+  for (std::size_t i = 0; i < feet_a.size(); ++i) {
+    if (i % kChunk == 0) {
+      progress.ThrowIfCancelled();
+      progress.Update(static_cast<double>(i) / total, "placing survey A's model on the CAD");
+    }
+    feet_a[i] = index.Closest(model_a.vertices[i]).point;
+  }
   const PointIndex a_index(feet_a);
 
   SurveyComparison out;
@@ -85,6 +102,10 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   const std::size_t nb = model_b.num_vertices();
   std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
   for (std::size_t i = 0; i < nb; ++i) {
+    if (i % kChunk == 0) {
+      progress.ThrowIfCancelled();
+      progress.Update(static_cast<double>(feet_a.size() + i) / total, "measuring the change on survey B's model");
+    }
     const Eigen::Vector3d foot = index.Closest(model_b.vertices[i]).point;
     const auto nearest = a_index.NearestOne(foot);
     const std::size_t j = static_cast<std::size_t>(std::max(0, nearest.first));
@@ -156,6 +177,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     c.change = -c.height_a;
     out.objects.push_back(c);
   }
+  progress.Update(1.0, "compared: " + std::to_string(out.objects.size()) + " objects");
   return out;
 }
 
@@ -190,6 +212,49 @@ MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir) {
     if (const auto in = j.OptionalObject("inputs")) out.mesh_path = in->OptionalString("mesh").value_or("");
   }
   return out;
+}
+
+std::optional<std::string> FindMappingResults(const std::string& results) {
+  if (fs::exists(fs::path(results) / "model.ply")) return results;
+  if (fs::exists(fs::path(results) / "mapping" / "model.ply")) return (fs::path(results) / "mapping").string();
+  return std::nullopt;
+}
+
+SurveyComparisonRun RunSurveyComparison(const std::string& results_a, const std::string& results_b,
+                                        const std::string& mesh, double mesh_scale, const SurveyCompareOptions& o,
+                                        Progress& progress) {
+  o.Check();
+  SurveyComparisonRun run;
+  auto folder = [](const std::string& results) {
+    const auto f = FindMappingResults(results);
+    if (!f) {
+      throw InputError({results, 0, 0, ""}, "holds neither mapping results (model.ply) nor a pipeline's mapping/");
+    }
+    return *f;
+  };
+  run.folder_a = folder(results_a);
+  run.folder_b = folder(results_b);
+  progress.Update(0.0, "reading survey A's results");
+  MappingResultsOnDisk a = ReadMappingResultsForCompare(run.folder_a);
+  progress.ThrowIfCancelled();
+  progress.Update(0.1, "reading survey B's results");
+  MappingResultsOnDisk b = ReadMappingResultsForCompare(run.folder_b);
+  progress.ThrowIfCancelled();
+  run.mesh = mesh.empty() ? a.mesh_path : mesh;
+  if (run.mesh.empty()) {
+    throw InputError({(fs::path(run.folder_a) / "mapping.json").string(), 0, 0, "inputs.mesh"},
+                     "names no CAD mesh: give the mesh");
+  }
+  progress.Update(0.2, "loading the CAD mesh");
+  MeshLoadOptions lo;
+  lo.scale = mesh_scale;
+  const TriangleMesh cad = LoadMesh(run.mesh, lo);
+  progress.ThrowIfCancelled();
+  SubProgress sub(progress, 0.3, 1.0);
+  run.comparison = CompareSurveys(cad, a.model, a.objects, b.model, b.objects, o, sub);
+  run.objects_a = std::move(a.objects);
+  run.objects_b = std::move(b.objects);
+  return run;
 }
 
 void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_dir) {

@@ -91,7 +91,11 @@ const Session::ModelRuns& SyntheticRuns() {
 std::shared_ptr<const MappingRun> SyntheticMapping() {
   static const std::shared_ptr<const MappingRun> mapping = [] {
     const SyntheticSurvey& s = MakeSyntheticSurvey();
-    Mapper mapper(MappingInputFromTruth(*s.bundle), *s.mesh);
+    // Made-up landmark sigmas (2 to 5 mm, varying by id) so that the fused
+    // model carries per-vertex sigmas and the objects a height sigma.
+    MappingInput input = MappingInputFromTruth(*s.bundle);
+    for (MappingLandmark& l : input.landmarks) l.sigma_h = 0.002 + 0.0005 * static_cast<double>(l.id % 7);
+    Mapper mapper(std::move(input), *s.mesh);
     NullProgress progress;
     auto run = std::make_shared<MappingRun>();
     auto result = std::make_shared<const MappingResult>(mapper.Run(MappingOptions(), progress));

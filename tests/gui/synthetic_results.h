@@ -15,6 +15,8 @@ namespace hull::ui::testing {
 // DVL, Fig. 14 a-c), all-on-surface squashes them to 30 % of their height.
 std::shared_ptr<const AdjustmentRun> SyntheticRun(SurfaceModel model);
 const Session::ModelRuns& SyntheticRuns();
+// Mapped from the truth with made-up landmark sigmas (2 to 5 mm): the fused
+// model has per-vertex "sigma" and "significant", the objects a height sigma.
 std::shared_ptr<const MappingRun> SyntheticMapping();
 
 }  // namespace hull::ui::testing

@@ -41,6 +41,8 @@ class SceneView;
 class Session;
 class SolverPlotsView;
 class SonarPanel;
+class SurveyComparePanel;
+class SurveyCompareController;
 class SurveySummaryPanel;
 
 // Receives every error the window reports (title, message naming the file,
@@ -95,6 +97,8 @@ class MainWindow : public QMainWindow {
   CrossSectionView* crossSectionView() const { return cross_section_; }
   SolverPlotsView* solverPlotsView() const { return solver_plots_; }
   ObjectsPanel* objectsPanel() const { return objects_; }
+  SurveyComparePanel* comparePanel() const { return compare_panel_; }
+  SurveyCompareController* surveyCompare() const { return survey_compare_; }
   KeyframeView* keyframeView() const { return keyframe_view_; }
   SonarPanel* sonarPanel() const { return sonar_; }
   ResultExporter* exporter() const { return exporter_; }
@@ -127,6 +131,7 @@ class MainWindow : public QMainWindow {
   void AddResultHelpEntries(QMenu* help);
   void UpdateResultActions();
   void AskOpenSonarSequence();
+  void AskCompareSurveys();
   void AskExportResult(const QString& what);
   void AskExportScreenshots();
   void RebuildRecentMenu();
@@ -163,6 +168,9 @@ class MainWindow : public QMainWindow {
   CrossSectionView* cross_section_ = nullptr;
   SolverPlotsView* solver_plots_ = nullptr;
   ObjectsPanel* objects_ = nullptr;
+  SurveyComparePanel* compare_panel_ = nullptr;
+  QDockWidget* compare_dock_ = nullptr;
+  SurveyCompareController* survey_compare_ = nullptr;
   KeyframeView* keyframe_view_ = nullptr;
   SonarPanel* sonar_ = nullptr;
   ResultExporter* exporter_ = nullptr;

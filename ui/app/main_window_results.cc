@@ -16,11 +16,13 @@
 #include "ui/app/main_window.h"
 #include "ui/controllers/inspection_controller.h"
 #include "ui/controllers/result_exports.h"
+#include "ui/controllers/survey_compare_controller.h"
 #include "ui/jobs/job_runner.h"
 #include "ui/panels/layers_panel.h"
 #include "ui/panels/objects_panel.h"
 #include "ui/panels/parameter_panel.h"
 #include "ui/panels/sonar_panel.h"
+#include "ui/panels/survey_compare_panel.h"
 #include "ui/session/inspection_parameters.h"
 #include "ui/session/session.h"
 #include "ui/views/cross_section_view.h"
@@ -45,6 +47,10 @@ void MainWindow::CreateResultDocks() {
   QDockWidget* sonar = AddView(sonar_, QStringLiteral("Sonar"), Qt::BottomDockWidgetArea);
   tabifyDockWidget(objects, keyframe);
   tabifyDockWidget(keyframe, sonar);
+  compare_panel_ = new SurveyComparePanel(this);
+  compare_dock_ = AddView(compare_panel_, QStringLiteral("Change between surveys"), Qt::BottomDockWidgetArea);
+  tabifyDockWidget(sonar, compare_dock_);
+  survey_compare_ = new SurveyCompareController(session_, jobs_, this);
   section->raise();
   section_dock_ = section;
   sonar_dock_ = sonar;
@@ -133,9 +139,42 @@ void MainWindow::ConnectResults() {
   auto update_sigmas = [this](const ParameterValues& values) {
     const AdjustmentOptions o = AdjustmentOptionsFrom(values);
     solver_plots_->SetSigmas(o.sigma0, o.sigma1);
+    // k: the significance heatmap's mask, recomputed at once (no re-run).
+    const double k = MappingOptionsFrom(values).significance_k;
+    scene_->SetSignificanceK(k);
+    SurveyCompareOptions compare = survey_compare_->options();
+    compare.significance_k = k;
+    survey_compare_->SetOptions(compare);
   };
   connect(parameters_, &ParameterPanel::parametersChanged, this, update_sigmas);
   update_sigmas(parameters_->values());
+
+  connect(session_, &Session::comparisonChanged, this, [this] {
+    const auto& comparison = session_->comparison();
+    if (comparison && !scene_->Stats(SceneLayer::kHeightChange).present) {
+      // The first comparison: its layer covers the heatmaps.
+      SceneOptions o = layers_->options();
+      for (SceneLayer layer :
+           {SceneLayer::kHull, SceneLayer::kHeatmap, SceneLayer::kSigmaHeatmap, SceneLayer::kSignificance}) {
+        o.visible[layer] = false;
+      }
+      o.visible[SceneLayer::kHeightChange] = true;
+      layers_->SetOptions(o);
+      scene_->SetOptions(o);
+    }
+    scene_->SetComparison(comparison);
+    if (comparison && !session_->survey() && !session_->mesh()) scene_->ResetCamera();
+    compare_panel_->SetComparison(comparison);
+    compare_dock_->show();
+    compare_dock_->raise();
+    UpdatePlacement();
+  });
+  connect(compare_panel_, &SurveyComparePanel::compareRequested, this, &MainWindow::AskCompareSurveys);
+  connect(compare_panel_, &SurveyComparePanel::objectSelected, this, [this](int index) {
+    const auto& comparison = session_->comparison();
+    if (!comparison || index < 0 || index >= static_cast<int>(comparison->comparison.objects.size())) return;
+    scene_->FlyTo(session_->ModelPose() * comparison->comparison.objects[index].centroid, 0.6);
+  });
 
   connect(sonar_, &SonarPanel::runChanged, this, [this] {
     sonar_dock_->show();
@@ -170,6 +209,12 @@ void MainWindow::CreateInspectionMenu() {
                      "the solver plots"));
   inspect->addAction(compare);
   AddImagesEntries(inspect);
+  QAction* surveys = NewAction(QStringLiteral("compareSurveys"), QStringLiteral("Compare &with…"), this,
+                               [this] { AskCompareSurveys(); });
+  surveys->setToolTip(
+      QStringLiteral("The change between two surveys of this hull: an earlier survey's results against the map "
+                     "on screen, or two results folders"));
+  inspect->addAction(surveys);
   inspect->addAction(NewAction(
       QStringLiteral("cancelJobs"), QStringLiteral("C&ancel"), jobs_, [this] { jobs_->CancelAll(); },
       QKeySequence(Qt::Key_Escape)));
@@ -221,6 +266,21 @@ void MainWindow::UpdateResultActions() {
 void MainWindow::AskOpenSonarSequence() {
   const QString path = QFileDialog::getExistingDirectory(this, QStringLiteral("Open an acoustic sequence folder"));
   if (!path.isEmpty()) sonar_->OpenSequence(path);
+}
+
+void MainWindow::AskCompareSurveys() {
+  if (survey_compare_->CanCompareWithMapping()) {
+    const QString a = QFileDialog::getExistingDirectory(
+        this, QStringLiteral("Compare with: the results folder of the earlier survey (A)"));
+    if (!a.isEmpty()) survey_compare_->CompareWithMapping(a);
+    return;
+  }
+  const QString a =
+      QFileDialog::getExistingDirectory(this, QStringLiteral("Compare: the results folder of the earlier survey (A)"));
+  if (a.isEmpty()) return;
+  const QString b =
+      QFileDialog::getExistingDirectory(this, QStringLiteral("Compare: the results folder of the later survey (B)"));
+  if (!b.isEmpty()) survey_compare_->CompareFolders(a, b);
 }
 
 void MainWindow::AskExportResult(const QString& what) {

@@ -1,5 +1,8 @@
 #include "ui/controllers/result_exports.h"
 
+#include <cmath>
+#include <optional>
+
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -12,7 +15,7 @@ namespace hull::ui {
 
 std::string ObjectsCsv(const MappingResult& r) {
   CsvWriter csv({"id", "x", "y", "z", "nx", "ny", "nz", "distance_from_bow", "station", "side", "area", "mean_height",
-                 "max_height", "features", "views", "keyframes"});
+                 "max_height", "features", "views", "keyframes", "p95_height", "max_height_sigma"});
   for (const DetectedObject& o : r.objects) {
     csv.Add(o.id);
     for (int k = 0; k < 3; ++k) csv.Add(o.centroid_m[k]);
@@ -22,7 +25,8 @@ std::string ObjectsCsv(const MappingResult& r) {
     for (std::size_t i = 0; i < o.keyframes.size(); ++i) {
       keyframes += (i ? " " : "") + std::to_string(o.keyframes[i]);
     }
-    csv.Add(o.max_height).Add(o.num_features).Add(o.num_views).Add(keyframes);
+    csv.Add(o.max_height).Add(o.num_features).Add(o.num_views).Add(keyframes).Add(o.p95_height);
+    csv.AddOptional(std::isfinite(o.max_height_sigma) ? std::optional<double>(o.max_height_sigma) : std::nullopt);
     csv.EndRow();
   }
   return csv.Take();

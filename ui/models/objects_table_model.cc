@@ -1,5 +1,7 @@
 #include "ui/models/objects_table_model.h"
 
+#include <cmath>
+
 #include <QColor>
 #include <QStringList>
 
@@ -7,7 +9,7 @@ namespace hull::ui {
 
 namespace {
 
-enum ObjectColumn { kId, kFromBow, kStation, kSide, kArea, kMean, kMax, kFeatures, kViews, kObjectColumns };
+enum ObjectColumn { kId, kFromBow, kStation, kSide, kArea, kMean, kMax, kP95, kFeatures, kViews, kObjectColumns };
 // The rating first after the zone: what an inspector looks for.
 enum ZoneColumn {
   kZStation,
@@ -65,7 +67,8 @@ QVariant ObjectsTableModel::headerData(int section, Qt::Orientation orientation,
                                       QStringLiteral("Side"),
                                       QStringLiteral("Area (m²)"),
                                       QStringLiteral("Mean height (mm)"),
-                                      QStringLiteral("Max height (mm)"),
+                                      QStringLiteral("Max height ± σ (mm)"),
+                                      QStringLiteral("95th pct. height (mm)"),
                                       QStringLiteral("Features"),
                                       QStringLiteral("Views")};
   return headers.value(section);
@@ -95,13 +98,20 @@ QVariant ObjectsTableModel::data(const QModelIndex& index, int role) const {
     case kMean:
       return sort ? QVariant(o.mean_height) : QVariant(QString::number(o.mean_height * 1000.0, 'f', 1));
     case kMax:
-      return sort ? QVariant(o.max_height) : QVariant(QString::number(o.max_height * 1000.0, 'f', 1));
+      return sort ? QVariant(o.max_height) : QVariant(HeightWithSigma(o.max_height, o.max_height_sigma));
+    case kP95:
+      return sort ? QVariant(o.p95_height) : QVariant(QString::number(o.p95_height * 1000.0, 'f', 1));
     case kFeatures:
       return o.num_features;
     case kViews:
       return o.num_views;
   }
   return {};
+}
+
+QString HeightWithSigma(double height, double sigma) {
+  const QString h = QString::number(height * 1000.0, 'f', 1);
+  return std::isfinite(sigma) ? h + QStringLiteral(" ± ") + QString::number(sigma * 1000.0, 'f', 1) : h;
 }
 
 ZonesTableModel::ZonesTableModel(QObject* parent) : QAbstractTableModel(parent) {}

@@ -16,6 +16,9 @@ constexpr int kSortRole = Qt::UserRole + 1;
 // The row's index into MappingResult::objects or ::zones.
 constexpr int kIndexRole = Qt::UserRole + 2;
 
+// "123.4 ± 5.6" (mm) from metres; the height alone when sigma is NaN.
+QString HeightWithSigma(double height, double sigma);
+
 class ObjectsTableModel : public QAbstractTableModel {
   Q_OBJECT
 

@@ -22,6 +22,7 @@ std::optional<ReportSource> CollectReportSource(const Session& session, const Pa
     if (other->evaluation) r.pipeline.baseline_evaluations.push_back(*other->evaluation);
   }
   if (session.mapping()) r.mapping = session.mapping()->result;
+  r.comparison = session.comparison();
   return r;
 }
 

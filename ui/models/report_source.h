@@ -28,6 +28,8 @@ struct ReportSource {
   // run for the same parameters, if any) and the evaluations against truth.
   PipelineResult pipeline;
   std::shared_ptr<const MappingResult> mapping;  // nullptr: not mapped
+  // The comparison with another survey on screen (nullptr: none).
+  std::shared_ptr<const SurveyComparisonRun> comparison;
 };
 
 // nullopt until the session holds an alignment and an adjustment.

@@ -9,6 +9,9 @@ std::unique_ptr<Figure> MakeFigure(const FigureRef& ref, const ReportInputs& inp
   CheckInputs(inputs);
   switch (ref.kind) {
     case FigureKind::kHeatmap:
+    case FigureKind::kSigmaHeatmap:
+    case FigureKind::kSignificanceHeatmap:
+    case FigureKind::kChangeHeatmap:
       return MakeHeatmapFigure(ref, inputs, options);
     case FigureKind::kCrossSection:
       return MakeCrossSectionFigure(ref, inputs, options);

@@ -13,6 +13,7 @@
 
 #include "base/progress.h"
 #include "mapping/mapper.h"
+#include "mapping/survey_compare.h"
 #include "pipeline/pipeline.h"
 #include "simulate/survey_simulator.h"
 #include "ui/report/report.h"
@@ -128,7 +129,12 @@ int RunReport(const HeadlessCommand& c) {
   QElapsedTimer total;
   total.start();
   Say("hullinspect: reading the results in %s\n", Native(c.results));
-  const ReportInputs inputs = ReadReportInputs(c.results.toStdString());
+  ReportInputs inputs = ReadReportInputs(c.results.toStdString());
+  if (!c.earlier.isEmpty()) {
+    StderrProgress p("comparing with the earlier survey");
+    inputs.comparison = std::make_shared<const SurveyComparisonRun>(RunSurveyComparison(
+        c.earlier.toStdString(), c.results.toStdString(), inputs.mesh_path, 1.0, SurveyCompareOptions{}, p));
+  }
   const QDir out(QFileInfo(c.out).absoluteFilePath());
   Say("hullinspect: %s\n", "writing the report");
   const ReportFiles files =
@@ -168,11 +174,13 @@ HeadlessCommand ParseHeadlessCommand(const QStringList& a) {
       value(c.results);
     } else if (arg == QLatin1String("--out")) {
       value(c.out);
+    } else if (arg == QLatin1String("--compare-with")) {
+      value(c.earlier);
     } else if (arg == QLatin1String("--help") || arg == QLatin1String("-h")) {
       c.help = true;
     } else {
       c.error = QStringLiteral(
-                    "the headless job takes --demo [--out DIR] or --report RESULTS --out DIR, "
+                    "the headless job takes --demo [--out DIR] or --report RESULTS [--compare-with EARLIER] --out DIR, "
                     "not '%1'")
                     .arg(arg);
     }
@@ -183,6 +191,8 @@ HeadlessCommand ParseHeadlessCommand(const QStringList& a) {
     c.error = QStringLiteral("nothing to do: give --demo or --report RESULTS");
   } else if (c.mode == HeadlessCommand::Mode::kReport && c.out.isEmpty()) {
     c.error = QStringLiteral("--report needs --out DIR");
+  } else if (c.mode != HeadlessCommand::Mode::kReport && !c.earlier.isEmpty()) {
+    c.error = QStringLiteral("--compare-with goes with --report");
   } else if (c.out.isEmpty()) {
     c.out = QStringLiteral("demo-output");
   }
@@ -192,13 +202,15 @@ HeadlessCommand ParseHeadlessCommand(const QStringList& a) {
 QString HeadlessUsage() {
   return QStringLiteral(
       "usage: hullinspect --demo [--out DIR]\n"
-      "       hullinspect --report RESULTS --out DIR\n"
+      "       hullinspect --report RESULTS [--compare-with EARLIER] --out DIR\n"
       "\n"
       "Without a display (no DISPLAY or WAYLAND_DISPLAY) hullinspect runs its main job headless:\n"
       "  --demo          simulate the demo survey into DIR/demo-survey, run the whole pipeline on it\n"
       "                  (alignment, the three surface models, mapping) and write the results and the\n"
       "                  report (report.html, report.pdf, figures/) into DIR (default ./demo-output)\n"
       "  --report RESULTS  write the report again from a results folder of --demo or hullinspect-cli\n"
+      "  --compare-with EARLIER  with --report: add the change since an earlier survey's results folder\n"
+      "                  (both mapped against the same CAD mesh; see hullinspect-cli compare)\n"
       "  --out DIR       the output folder\n"
       "The batch front end is hullinspect-cli (e.g. hullinspect-cli run --demo --out DIR).\n");
 }

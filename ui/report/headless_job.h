@@ -7,8 +7,10 @@
 //     the remeshed model as PLY with deviation, OBJ and STL, objects and
 //     zones as CSV and JSON) and the report (DIR/report.html, report.pdf,
 //     DIR/figures/*.png);
-//   hullinspect --report RESULTS --out DIR
-//     writes the report again from a results folder (results_reader.h).
+//   hullinspect --report RESULTS [--compare-with EARLIER] --out DIR
+//     writes the report again from a results folder (results_reader.h);
+//     with --compare-with, the change since an earlier survey's results
+//     (mapping/survey_compare.h) makes its "Change between surveys" section.
 //
 // Progress goes to stderr, the paths written to stdout. The caller creates a
 // QGuiApplication first, on the offscreen platform (PrepareHeadless()): the
@@ -25,6 +27,7 @@ struct HeadlessCommand {
   Mode mode = Mode::kNone;
   QString out;      // output folder
   QString results;  // --report: the results folder
+  QString earlier;  // --compare-with: an earlier survey's results folder ("" : none)
   bool help = false;
   QString error;  // non-empty: the command line is wrong (exit code 2)
 };

@@ -1,6 +1,9 @@
 // The deviation heatmap: the fused model (or, before mapping, the CAD with the
 // landmarks) seen orthographically from one side, whole and in detail over
-// the surveyed stretch. The mesh is rasterised back to front into an image at
+// the surveyed stretch. The same figure draws the fused model's per-vertex
+// sigma (sequential colours), its significant deviation (|h| > k sigma; grey
+// elsewhere) and, with a comparison, the change in height since the earlier
+// survey on the comparison's model. The mesh is rasterised back to front into an image at
 // the target's resolution (a PDF would not want 10^5 vector triangles); the
 // frame, labels, scale bar and colour bar are drawn as vectors.
 #include <QFontMetricsF>
@@ -8,9 +11,11 @@
 #include <QPolygonF>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "base/deviation_colours.h"
 #include "geometry/mesh_index.h"
+#include "mapping/vertex_significance.h"
 #include "ui/report/figures.h"
 #include "ui/report/plot_painter.h"
 
@@ -69,10 +74,34 @@ class HeatmapFigure final : public Figure {
   HeatmapFigure(const FigureRef& ref, const ReportInputs& in, const ReportOptions& options) : Figure(ref) {
     const HullFrame hull = ReportHullFrame(in);
     view_ = MakeViewBasis(hull, ref.view);
+    kind_ = ref.kind;
     mapped_ = static_cast<bool>(in.mapping);
-    const TriangleMesh& mesh = mapped_ ? in.mapping->model : *in.cad;
+    if (kind_ != FigureKind::kHeatmap && !mapped_) throw std::invalid_argument("report: this heatmap needs mapping");
+    if (kind_ == FigureKind::kChangeHeatmap && !in.comparison) {
+      throw std::invalid_argument("report: the change heatmap needs a comparison");
+    }
+    const TriangleMesh& mesh = kind_ == FigureKind::kChangeHeatmap ? in.comparison->comparison.model
+                               : mapped_                           ? in.mapping->model
+                                                                   : *in.cad;
     const std::vector<double>* dev = mapped_ ? mesh.FindScalar("deviation") : nullptr;
     const std::vector<double>* fusions = mapped_ ? mesh.FindScalar("fusions") : nullptr;
+    // What the colours show, and which faces have a value (the others grey).
+    const std::vector<double>* values = dev;
+    const std::vector<double>* mask = nullptr;
+    if (kind_ == FigureKind::kSigmaHeatmap) {
+      values = mesh.FindScalar("sigma");
+      if (!values) throw std::invalid_argument("report: the fused model has no per-vertex sigma");
+      for (const double v : *values) mask_.push_back(std::isfinite(v) ? 1.0 : 0.0);
+      mask = &mask_;
+    } else if (kind_ == FigureKind::kSignificanceHeatmap) {
+      values_ = SignificantDeviation(mesh, options.significance_k);
+      for (const double v : values_) mask_.push_back(std::isnan(v) ? 0.0 : 1.0);
+      values = &values_;
+      mask = &mask_;
+    } else if (kind_ == FigureKind::kChangeHeatmap) {
+      values = mesh.FindScalar("change");
+      if (!values) throw std::invalid_argument("report: the comparison's model has no change");
+    }
 
     // What this view shows of the survey: the adjusted landmarks on this side
     // of the hull (their CAD face turned toward the viewer) place the detail
@@ -94,12 +123,25 @@ class HeatmapFigure final : public Figure {
       }
     }
     footprint_ = ConvexHull(seen);
-    if (mapped_ && dev) {
+    if (kind_ == FigureKind::kChangeHeatmap || kind_ == FigureKind::kSigmaHeatmap) {
+      magnitudes.clear();
+      for (const double v : *values) {
+        if (std::isfinite(v)) magnitudes.push_back(std::abs(v));
+      }
+    } else if (mapped_ && dev) {
       for (std::size_t i = 0; i < dev->size(); ++i) {
         if (!fusions || (*fusions)[i] > 0) magnitudes.push_back(std::abs((*dev)[i]));
       }
     }
-    range_ = options.deviation_range > 0 ? options.deviation_range : DeviationColourRange(std::move(magnitudes));
+    if (kind_ == FigureKind::kSigmaHeatmap) {
+      // 0 to the 99th percentile of sigma, rounded up to a millimetre.
+      range_ = std::max(0.001, std::ceil(Percentile(magnitudes, 0.99) * 1000.0) / 1000.0);
+    } else if (kind_ == FigureKind::kChangeHeatmap) {
+      range_ = DeviationColourRange(std::move(magnitudes));
+    } else {
+      range_ = options.deviation_range > 0 ? options.deviation_range : DeviationColourRange(std::move(magnitudes));
+    }
+    significance_k_ = options.significance_k;
 
     // Overview: the whole hull.
     overview_.window = ProjectedBounds(mesh, view_);
@@ -109,7 +151,7 @@ class HeatmapFigure final : public Figure {
     const double ov_height = std::clamp(kPanelWidth * ov.y() / ov.x(), 60.0, 240.0);
     overview_.rect = QRectF(kMargin, 30, kPanelWidth, ov_height);
     overview_.window = FitAspect(overview_.window, kPanelWidth / ov_height);
-    overview_.triangles = ProjectMesh(mesh, view_, dev, nullptr);
+    overview_.triangles = ProjectMesh(mesh, view_, values, mask);
 
     // Detail: the surveyed stretch.
     Eigen::AlignedBox2d detail;
@@ -130,10 +172,10 @@ class HeatmapFigure final : public Figure {
     const double detail_height = std::clamp(kPanelWidth * ds.y() / ds.x(), 220.0, 560.0);
     detail_.rect = QRectF(kMargin, overview_.rect.bottom() + 44, kPanelWidth, detail_height);
     detail_.window = FitAspect(detail, kPanelWidth / detail_height);
-    detail_.triangles = ProjectMesh(mesh, view_, dev, nullptr, detail_.window);
+    detail_.triangles = ProjectMesh(mesh, view_, values, mask, detail_.window);
     detail_.dots = dots_;
 
-    if (mapped_) {
+    if (mapped_ && kind_ != FigureKind::kChangeHeatmap) {
       // Objects on this side, the largest first, at most 30 labelled.
       std::vector<const DetectedObject*> objects;
       for (const DetectedObject& o : in.mapping->objects) {
@@ -167,9 +209,7 @@ class HeatmapFigure final : public Figure {
     PaintFootprint(p, overview_);
     DrawDirections(p, overview_.rect);
 
-    DrawTitle(p, detail_.rect,
-              mapped_ ? QStringLiteral("Surveyed stretch: fused model")
-                      : QStringLiteral("Surveyed stretch: landmarks over the CAD model"));
+    DrawTitle(p, detail_.rect, DetailTitle());
     PaintMesh(p, detail_);
     PaintFootprint(p, detail_);
     PaintDots(p, detail_);
@@ -178,7 +218,24 @@ class HeatmapFigure final : public Figure {
     DrawDirections(p, detail_.rect);
 
     const QRectF bar(kFigureWidth - kMargin - 300, detail_.rect.bottom() + 16, 300, 12);
-    DrawColourBar(p, bar, range_, QStringLiteral("deviation from the CAD surface (m)"));
+    switch (kind_) {
+      case FigureKind::kSigmaHeatmap:
+        DrawSequentialColourBar(p, bar, range_ * 1000.0, QStringLiteral("σ of the deviation (mm)"));
+        break;
+      case FigureKind::kChangeHeatmap:
+        DrawColourBar(p, bar, range_, QStringLiteral("change in height since survey A (m)"));
+        break;
+      case FigureKind::kSignificanceHeatmap:
+        DrawColourBar(p, bar, range_, QStringLiteral("deviation (m)"));
+        DrawLegendRow(
+            p, QRectF(kMargin + 200, bar.top() - 2, 190, 16),
+            {{QColor(0xb4, 0xb4, 0xb4), QStringLiteral("not significant: |h| ≤ %1 σ").arg(significance_k_, 0, 'g', 3),
+              LegendEntry::Mark::kBox}});
+        break;
+      default:
+        DrawColourBar(p, bar, range_, QStringLiteral("deviation from the CAD surface (m)"));
+        break;
+    }
     if (footprint_.size() >= 3) {
       DrawLegendRow(
           p, QRectF(kMargin, bar.top() - 2, 200, 16),
@@ -187,6 +244,20 @@ class HeatmapFigure final : public Figure {
   }
 
  private:
+  QString DetailTitle() const {
+    switch (kind_) {
+      case FigureKind::kSigmaHeatmap:
+        return QStringLiteral("Surveyed stretch: σ of the fused model's deviation");
+      case FigureKind::kSignificanceHeatmap:
+        return QStringLiteral("Surveyed stretch: significant deviation (|h| > %1 σ)").arg(significance_k_, 0, 'g', 3);
+      case FigureKind::kChangeHeatmap:
+        return QStringLiteral("Surveyed stretch: change in height, survey B minus survey A");
+      default:
+        return mapped_ ? QStringLiteral("Surveyed stretch: fused model")
+                       : QStringLiteral("Surveyed stretch: landmarks over the CAD model");
+    }
+  }
+
   // Rasterises the panel's triangles at the device resolution of its rectangle.
   void PaintMesh(QPainter& p, const Panel& panel) const {
     const QRectF device = p.transform().mapRect(panel.rect);
@@ -206,7 +277,9 @@ class HeatmapFigure final : public Figure {
           poly[k] = QPointF((t.corner[k].x() - lo.x()) * sx, h - (t.corner[k].y() - lo.y()) * sy);
         }
         const double shade = 0.62 + 0.38 * std::abs(t.facing);
-        const QColor base = t.valued ? DivergingColour(t.value / range_) : QColor(0xb4, 0xb4, 0xb4);
+        const QColor base = !t.valued                            ? QColor(0xb4, 0xb4, 0xb4)
+                            : kind_ == FigureKind::kSigmaHeatmap ? SequentialColour(t.value / range_)
+                                                                 : DivergingColour(t.value / range_);
         const QColor c = QColor::fromRgbF(base.redF() * shade, base.greenF() * shade, base.blueF() * shade);
         // The pen closes the hairline seams antialiasing leaves between faces.
         r.setPen(QPen(c, 0.9));
@@ -321,6 +394,9 @@ class HeatmapFigure final : public Figure {
   }
 
   ViewBasis view_;
+  FigureKind kind_ = FigureKind::kHeatmap;
+  std::vector<double> values_, mask_;  // significance: the masked deviation and its mask
+  double significance_k_ = 1.96;
   bool mapped_ = false;
   double range_ = 0.1;
   Panel overview_, detail_;

@@ -13,6 +13,18 @@ QColor DivergingColour(double t) {
   return QColor::fromRgbF(rgb[0], rgb[1], rgb[2]);
 }
 
+QColor SequentialColour(double t) {
+  static const double stops[9][3] = {{0.267, 0.005, 0.329}, {0.278, 0.175, 0.483}, {0.230, 0.322, 0.546},
+                                     {0.173, 0.449, 0.558}, {0.128, 0.567, 0.551}, {0.153, 0.680, 0.504},
+                                     {0.361, 0.785, 0.388}, {0.668, 0.862, 0.196}, {0.993, 0.906, 0.144}};
+  const double x = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 8.0;
+  const int i = std::min(7, static_cast<int>(x));
+  const double f = x - i;
+  return QColor::fromRgbF(stops[i][0] + f * (stops[i + 1][0] - stops[i][0]),
+                          stops[i][1] + f * (stops[i + 1][1] - stops[i][1]),
+                          stops[i][2] + f * (stops[i + 1][2] - stops[i][2]));
+}
+
 QColor ModelColour(SurfaceModel m) {
   switch (m) {
     case SurfaceModel::kNaive:
@@ -229,6 +241,33 @@ void DrawColourBar(QPainter& p, const QRectF& rect, double range, const QString&
   const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : range;
   for (double v : ticks) {
     const double x = rect.left() + (v + range) / (2 * range) * rect.width();
+    p.drawLine(QPointF(x, rect.bottom()), QPointF(x, rect.bottom() + 3));
+    p.drawText(QRectF(x - 30, rect.bottom() + 3, 60, fm.height()), Qt::AlignHCenter | Qt::AlignTop, TickLabel(v, step));
+  }
+  p.setFont(FigureFont(10.5));
+  p.drawText(QRectF(rect.left() - 330, rect.top() - 4, 322, rect.height() + 8), Qt::AlignRight | Qt::AlignVCenter,
+             label);
+  p.restore();
+}
+
+void DrawSequentialColourBar(QPainter& p, const QRectF& rect, double max, const QString& label) {
+  p.save();
+  constexpr int n = 128;
+  p.setPen(Qt::NoPen);
+  for (int i = 0; i < n; ++i) {
+    p.setBrush(SequentialColour((i + 0.5) / n));
+    p.drawRect(QRectF(rect.left() + rect.width() * i / n, rect.top(), rect.width() / n + 0.6, rect.height()));
+  }
+  p.setPen(QPen(QColor(0x40, 0x40, 0x40), 0.8));
+  p.setBrush(Qt::NoBrush);
+  p.drawRect(rect);
+  p.setFont(FigureFont(10));
+  const QFontMetricsF fm(p.font());
+  const std::vector<double> ticks = NiceTicks(0, max, 4);
+  const double step = ticks.size() > 1 ? ticks[1] - ticks[0] : max;
+  for (double v : ticks) {
+    if (v < 0 || v > max) continue;
+    const double x = rect.left() + v / max * rect.width();
     p.drawLine(QPointF(x, rect.bottom()), QPointF(x, rect.bottom() + 3));
     p.drawText(QRectF(x - 30, rect.bottom() + 3, 60, fm.height()), Qt::AlignHCenter | Qt::AlignTop, TickLabel(v, step));
   }

@@ -18,6 +18,8 @@ namespace hull::report {
 
 // Diverging blue - near-white - red for t in [-1, 1] (ColorBrewer RdBu).
 QColor DivergingColour(double t);
+// Sequential viridis for t in [0, 1] (clamped).
+QColor SequentialColour(double t);
 // The colour each surface model has in every figure.
 QColor ModelColour(SurfaceModel m);
 QString ModelLabel(SurfaceModel m);  // "naive", "all-on-surface", "max-mixture"
@@ -67,5 +69,7 @@ void DrawLegendRow(QPainter& p, const QRectF& rect, const std::vector<LegendEntr
 // A horizontal colour bar of DivergingColour over [-range, range] with ticks
 // and a label below.
 void DrawColourBar(QPainter& p, const QRectF& rect, double range, const QString& label);
+// The same for SequentialColour over [0, max].
+void DrawSequentialColourBar(QPainter& p, const QRectF& rect, double max, const QString& label);
 
 }  // namespace hull::report

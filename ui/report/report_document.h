@@ -13,17 +13,20 @@
 namespace hull::report {
 
 enum class FigureKind {
-  kHeatmap,       // deviation of the fused model (or the landmarks) from one view
-  kCrossSection,  // the slab across the hull, every model side by side (Fig. 14)
-  kConvergence,   // cost and fraction of lambda = 1 per iteration (Fig. 16)
-  kDvlResiduals,  // DVL range residual histograms before and after (Fig. 18)
-  kModelTiming,   // time per model (Fig. 17), only when the models were compared
+  kHeatmap,              // deviation of the fused model (or the landmarks) from one view
+  kSigmaHeatmap,         // the fused model's per-vertex sigma from one view
+  kSignificanceHeatmap,  // its deviation where |h| > k sigma, grey elsewhere, from one view
+  kChangeHeatmap,        // the change in height since an earlier survey, from one view
+  kCrossSection,         // the slab across the hull, every model side by side (Fig. 14)
+  kConvergence,          // cost and fraction of lambda = 1 per iteration (Fig. 16)
+  kDvlResiduals,         // DVL range residual histograms before and after (Fig. 18)
+  kModelTiming,          // time per model (Fig. 17), only when the models were compared
 };
 
 struct FigureRef {
   std::string id;  // file stem: "heatmap-bottom", "cross-section", ...
   FigureKind kind = FigureKind::kHeatmap;
-  HullView view = HullView::kBottom;  // kHeatmap only
+  HullView view = HullView::kBottom;  // the heatmaps only
   std::string title;
   std::string caption;
 };
@@ -65,8 +68,8 @@ struct ReportDocument {
   const Section* Find(const std::string& id) const;
 };
 
-// Section ids, in order: summary, method, deviation, cross-section, objects,
-// zones, solver, evaluation, not-inspected. Every section is present; one
+// Section ids, in order: summary, method, deviation, uncertainty,
+// cross-section, objects, zones, change, solver, evaluation, not-inspected. Every section is present; one
 // without data says why (e.g. mapping has not run, no ground truth).
 std::vector<std::string> SectionIds();
 

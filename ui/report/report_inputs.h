@@ -12,6 +12,7 @@
 
 #include "geometry/triangle_mesh.h"
 #include "mapping/mapping_result.h"
+#include "mapping/survey_compare.h"
 #include "pipeline/pipeline.h"
 #include "survey/survey.h"
 
@@ -28,6 +29,9 @@ struct ReportInputs {
   std::string results_path;
   // Wall seconds of the whole run (pipeline and mapping) when known (0: not shown).
   double run_seconds = 0;
+  // Optional: the change since an earlier survey of the hull (this survey
+  // is B), for the "Change between surveys" section.
+  std::shared_ptr<const SurveyComparisonRun> comparison;
 };
 
 // Throws std::invalid_argument naming the first required member missing.
@@ -45,6 +49,8 @@ struct ReportOptions {
   // Figure images: width in pixels of the PNGs (the height follows each
   // figure's aspect). The PDF draws the same figures as vectors.
   int figure_width_px = 1600;
+  // The significance factor k of the significance heatmap (|h| > k sigma).
+  double significance_k = 1.96;
   // Title; "" : "Hull inspection report" and the survey's name.
   std::string title;
 };

@@ -65,7 +65,9 @@ Section ObjectsSection(const ReportInputs& in) {
   for (const DetectedObject& o : m.objects) area += o.area;
   s.blocks.push_back(Paragraph(Format(
       "%zu objects stand more than h_min = %.3f m off the CAD surface, covering %.2f m² in all. Distances are from "
-      "the bow along the hull; heights are the fused model's deviation from the CAD surface over each footprint.",
+      "the bow along the hull; heights are the fused model's deviation from the CAD surface over each footprint: "
+      "the highest vertex with its standard deviation σ (that of the object's feature nearest the peak, from the "
+      "adjustment) and the 95th percentile of the footprint's vertex heights.",
       m.objects.size(), m.options.object_min_height, area)));
   Table t = MakeTable({{"Object", false},
                        {"From bow (m)", true},
@@ -73,13 +75,16 @@ Section ObjectsSection(const ReportInputs& in) {
                        {"Side", false},
                        {"Area (m²)", true},
                        {"Mean height (m)", true},
-                       {"Max height (m)", true},
+                       {"Max height ± σ (m)", true},
+                       {"95th pct. (m)", true},
                        {"Features", true},
                        {"Views", true}});
   for (const DetectedObject& o : m.objects) {
     t.rows.push_back({o.id, Num(o.distance_from_bow, 2), std::to_string(o.station), HullSideName(o.side),
-                      Num(o.area, 3), Num(o.mean_height, 3), Num(o.max_height, 3), std::to_string(o.num_features),
-                      std::to_string(o.num_views)});
+                      Num(o.area, 3), Num(o.mean_height, 3),
+                      std::isfinite(o.max_height_sigma) ? Num(o.max_height, 3) + " ± " + Num(o.max_height_sigma, 3)
+                                                        : Num(o.max_height, 3),
+                      Num(o.p95_height, 3), std::to_string(o.num_features), std::to_string(o.num_views)});
   }
   s.blocks.push_back(TableBlock(std::move(t)));
   return s;

@@ -16,4 +16,12 @@ Section SolverSection(const ReportInputs& in, const std::vector<FigureRef>& figu
 Section EvaluationSection(const ReportInputs& in);
 Section NotInspectedSection(const ReportInputs& in);
 
+// report_trust_sections.cc: uncertainty, significance and change between
+// surveys. PlanTrustFigures appends, for every heatmap view already planned
+// in `figures`, the sigma and significance heatmaps (when the fused model
+// has per-vertex sigmas) and the change heatmap (with a comparison).
+void PlanTrustFigures(const ReportInputs& in, const ReportOptions& options, std::vector<FigureRef>& figures);
+Section UncertaintySection(const ReportInputs& in, const ReportOptions& options, const std::vector<FigureRef>& figures);
+Section ChangeSection(const ReportInputs& in, const std::vector<FigureRef>& figures);
+
 }  // namespace hull::report

@@ -1,5 +1,7 @@
 #include "ui/report/results_reader.h"
 
+#include <cmath>
+
 #include <filesystem>
 
 #include "base/error.h"
@@ -143,6 +145,8 @@ MappingResult ReadMapping(const fs::path& dir, const TriangleMesh& cad, const Ad
     d.area = r.Number("area");
     d.mean_height = r.Number("mean_height");
     d.max_height = r.Number("max_height");
+    d.p95_height = r.NumberOr("p95_height", d.max_height);  // written since version 1's objects gained it
+    d.max_height_sigma = r.NumberOr("max_height_sigma", std::nan(""));
     d.num_features = static_cast<int>(r.Integer("features"));
     d.num_views = static_cast<int>(r.Integer("views"));
     for (double k : r.Numbers("keyframes", -1)) d.keyframes.push_back(static_cast<std::int64_t>(k));

@@ -167,6 +167,11 @@ ParameterTable MakeTable() {
                    10.0, m.object_min_area, 3, 0.005, QStringLiteral("m²"),
                    QStringLiteral("... over at least this footprint area.")));
   AddFrontEndFields(t);
+  t.push_back(Real(QStringLiteral("significance_k"), kMap, Stage::kNone, QStringLiteral("Significance k"), 0.1, 10.0,
+                   m.significance_k, 2, 0.1, {},
+                   QStringLiteral("A deviation h is significant where |h| > k·σ, σ being the vertex's standard "
+                                  "deviation from the adjustment (1.96: 95 % for a normal error). Changes the "
+                                  "significance heatmap at once; nothing is re-run.")));
   return t;
 }
 
@@ -290,6 +295,7 @@ MappingOptions MappingOptionsFrom(const ParameterValues& values) {
   o.dbscan_min_points = values.value(QStringLiteral("dbscan_min_points"), o.dbscan_min_points).toInt();
   o.object_min_height = values.value(QStringLiteral("object_min_height"), o.object_min_height).toDouble();
   o.object_min_area = values.value(QStringLiteral("object_min_area"), o.object_min_area).toDouble();
+  o.significance_k = values.value(QStringLiteral("significance_k"), o.significance_k).toDouble();
   return o;
 }
 

@@ -16,7 +16,10 @@ const std::vector<SceneLayer>& AllSceneLayers() {
                                                  SceneLayer::kSlab,
                                                  SceneLayer::kHeatmap,
                                                  SceneLayer::kAlphaShapes,
-                                                 SceneLayer::kDetectedObjects};
+                                                 SceneLayer::kDetectedObjects,
+                                                 SceneLayer::kSigmaHeatmap,
+                                                 SceneLayer::kSignificance,
+                                                 SceneLayer::kHeightChange};
   return layers;
 }
 
@@ -50,6 +53,12 @@ QString LayerKey(SceneLayer layer) {
       return QStringLiteral("alpha_shapes");
     case SceneLayer::kDetectedObjects:
       return QStringLiteral("detected_objects");
+    case SceneLayer::kSigmaHeatmap:
+      return QStringLiteral("sigma_heatmap");
+    case SceneLayer::kSignificance:
+      return QStringLiteral("significance");
+    case SceneLayer::kHeightChange:
+      return QStringLiteral("height_change");
   }
   return {};
 }
@@ -84,6 +93,12 @@ QString LayerLabel(SceneLayer layer) {
       return QStringLiteral("Alpha shapes (per keyframe)");
     case SceneLayer::kDetectedObjects:
       return QStringLiteral("Detected objects (outlines)");
+    case SceneLayer::kSigmaHeatmap:
+      return QStringLiteral("Remeshed model (σ, uncertainty)");
+    case SceneLayer::kSignificance:
+      return QStringLiteral("Remeshed model (significant deviation)");
+    case SceneLayer::kHeightChange:
+      return QStringLiteral("Change between surveys (height)");
   }
   return {};
 }
@@ -113,7 +128,10 @@ bool SceneOptions::IsVisible(SceneLayer layer) const {
 std::map<SceneLayer, bool> SceneOptions::DefaultVisibility() {
   std::map<SceneLayer, bool> v;
   for (SceneLayer layer : AllSceneLayers()) {
-    v[layer] = layer != SceneLayer::kFrusta && layer != SceneLayer::kAlphaShapes;
+    // The sigma and significance heatmaps cover the deviation heatmap: off
+    // until asked for.
+    v[layer] = layer != SceneLayer::kFrusta && layer != SceneLayer::kAlphaShapes &&
+               layer != SceneLayer::kSigmaHeatmap && layer != SceneLayer::kSignificance;
   }
   return v;
 }

@@ -28,6 +28,10 @@ enum class SceneLayer {
   kHeatmap,          // the fused, remeshed model coloured by its deviation
   kAlphaShapes,      // Algorithm 1's alpha shapes of every keyframe
   kDetectedObjects,  // the detected objects' footprint outlines
+  kSigmaHeatmap,     // the fused model coloured by its per-vertex sigma (mm)
+  kSignificance,     // the fused model's deviation where |h| > k sigma, grey elsewhere
+  // A comparison of two surveys (present once one ran):
+  kHeightChange,  // survey B's model coloured by the change in height since survey A
 };
 
 const std::vector<SceneLayer>& AllSceneLayers();

@@ -100,6 +100,12 @@ void Session::SetMapping(std::shared_ptr<const MappingRun> run) {
   emit mappingChanged();
 }
 
+void Session::SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison) {
+  if (comparison == comparison_) return;
+  comparison_ = std::move(comparison);
+  emit comparisonChanged();
+}
+
 void Session::ClearResults() {
   SetMapping(nullptr);
   const bool had_runs = !model_runs_.empty();

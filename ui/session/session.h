@@ -15,6 +15,7 @@
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
+#include "mapping/survey_compare.h"
 #include "registration/model_alignment.h"
 #include "survey/survey.h"
 #include "ui/session/inspection_results.h"
@@ -73,6 +74,10 @@ class Session : public QObject {
   const std::shared_ptr<const MappingRun>& mapping() const { return mapping_; }
   void SetMapping(std::shared_ptr<const MappingRun> run);
   void ClearResults();
+  // The comparison of two surveys on screen (nullptr: none). Independent of
+  // the survey open: opening another survey keeps it.
+  const std::shared_ptr<const SurveyComparisonRun>& comparison() const { return comparison_; }
+  void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
 
   // What the visual front end found in the survey's images (nullptr: the
   // features came with the bundle, or none extracted yet), and whether the
@@ -101,6 +106,7 @@ class Session : public QObject {
   void modelRunsChanged();
   void mappingChanged();
   void featuresChanged();
+  void comparisonChanged();
 
  private:
   std::optional<LoadedMesh> mesh_;
@@ -112,6 +118,7 @@ class Session : public QObject {
   ModelRuns model_runs_;
   std::shared_ptr<const MappingRun> mapping_;
   std::shared_ptr<const FrontEndResult> front_end_;
+  std::shared_ptr<const SurveyComparisonRun> comparison_;
 };
 
 }  // namespace hull::ui

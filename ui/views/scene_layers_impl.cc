@@ -1,6 +1,9 @@
 #include "ui/views/scene_layers_impl.h"
 
+#include <vtkColorTransferFunction.h>
+#include <vtkNew.h>
 #include <vtkProperty.h>
+#include <vtkTextProperty.h>
 
 namespace hull::ui {
 
@@ -92,12 +95,24 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
       actor->PickableOff();
       break;
     case SceneLayer::kHeatmap:
+    case SceneLayer::kSigmaHeatmap:
+    case SceneLayer::kSignificance:
+    case SceneLayer::kHeightChange:
       p->SetInterpolationToGouraud();
       p->SetAmbient(0.35);
       p->SetDiffuse(0.7);
       p->SetSpecular(0.0);
       actor->PickableOff();
-      MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 8.0);
+      // All draw the same surface: the deviation heatmap furthest back, so
+      // that a sigma, significance or change layer switched on with it wins
+      // (and points and lines on the surface stay in front of them all).
+      if (layer == SceneLayer::kHeatmap) {
+        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 8.0);
+      } else if (layer == SceneLayer::kHeightChange) {
+        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(1.0, 2.0);
+      } else {
+        MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(1.5, 5.0);
+      }
       break;
     case SceneLayer::kAlphaShapes:
       Colour(p, kShapeWhite);
@@ -113,6 +128,79 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
       p->LightingOff();
       break;
   }
+}
+
+vtkSmartPointer<vtkLookupTable> MakeDivergingLut() {
+  vtkNew<vtkColorTransferFunction> ctf;
+  ctf->SetColorSpaceToDiverging();
+  ctf->AddRGBPoint(0.0, 0.230, 0.299, 0.754);
+  ctf->AddRGBPoint(0.5, 0.865, 0.865, 0.865);
+  ctf->AddRGBPoint(1.0, 0.706, 0.016, 0.150);
+  auto lut = vtkSmartPointer<vtkLookupTable>::New();
+  lut->SetNumberOfTableValues(256);
+  for (int i = 0; i < 256; ++i) {
+    double rgb[3];
+    ctf->GetColor(i / 255.0, rgb);
+    lut->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
+  }
+  lut->SetNanColor(0.45, 0.46, 0.48, 1.0);
+  lut->Build();
+  return lut;
+}
+
+vtkSmartPointer<vtkLookupTable> MakeSequentialLut() {
+  // Viridis at nine stops, interpolated in RGB.
+  static const double stops[9][3] = {{0.267, 0.005, 0.329}, {0.278, 0.175, 0.483}, {0.230, 0.322, 0.546},
+                                     {0.173, 0.449, 0.558}, {0.128, 0.567, 0.551}, {0.153, 0.680, 0.504},
+                                     {0.361, 0.785, 0.388}, {0.668, 0.862, 0.196}, {0.993, 0.906, 0.144}};
+  vtkNew<vtkColorTransferFunction> ctf;
+  ctf->SetColorSpaceToRGB();
+  for (int i = 0; i < 9; ++i) ctf->AddRGBPoint(i / 8.0, stops[i][0], stops[i][1], stops[i][2]);
+  auto lut = vtkSmartPointer<vtkLookupTable>::New();
+  lut->SetNumberOfTableValues(256);
+  for (int i = 0; i < 256; ++i) {
+    double rgb[3];
+    ctf->GetColor(i / 255.0, rgb);
+    lut->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
+  }
+  lut->SetNanColor(0.45, 0.46, 0.48, 1.0);
+  lut->Build();
+  return lut;
+}
+
+vtkSmartPointer<vtkScalarBarActor> MakeLegend(vtkLookupTable* lut, const char* title, const char* label_format) {
+  auto legend = vtkSmartPointer<vtkScalarBarActor>::New();
+  legend->SetLookupTable(lut);
+  legend->SetTitle(title);
+  legend->SetNumberOfLabels(5);
+  legend->SetLabelFormat(label_format);
+  legend->SetMaximumWidthInPixels(110);
+  legend->GetPositionCoordinate()->SetValue(0.85, 0.05);
+  legend->SetWidth(0.13);
+  legend->SetHeight(0.6);
+  legend->UnconstrainedFontSizeOn();
+  legend->SetVerticalTitleSeparation(6);
+  legend->GetTitleTextProperty()->SetFontSize(14);
+  legend->GetLabelTextProperty()->SetFontSize(12);
+  legend->GetTitleTextProperty()->ItalicOff();
+  legend->GetTitleTextProperty()->ShadowOff();
+  legend->GetLabelTextProperty()->ItalicOff();
+  legend->GetLabelTextProperty()->ShadowOff();
+  legend->GetAnnotationTextProperty()->SetFontSize(12);
+  legend->GetAnnotationTextProperty()->ItalicOff();
+  legend->GetAnnotationTextProperty()->ShadowOff();
+  legend->VisibilityOff();
+  return legend;
+}
+
+void ColourByArray(vtkPolyDataMapper* mapper, const char* array, vtkLookupTable* lut) {
+  mapper->ScalarVisibilityOn();
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectColorArray(array);
+  mapper->SetColorModeToMapScalars();
+  mapper->SetLookupTable(lut);
+  mapper->UseLookupTableScalarRangeOn();
+  mapper->Modified();
 }
 
 }  // namespace hull::ui

@@ -4,8 +4,11 @@
 #pragma once
 
 #include <vtkActor.h>
+#include <vtkLookupTable.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkScalarBarActor.h>
+#include <vtkSmartPointer.h>
 
 #include "ui/session/scene_options.h"
 
@@ -13,6 +16,16 @@ namespace hull::ui {
 
 // Sets the actor's property (and pickability) for the layer.
 void StyleLayerActor(SceneLayer layer, vtkActor* actor);
+
+// Moreland's cool-to-warm diverging map (256 entries; NaN: mid grey).
+vtkSmartPointer<vtkLookupTable> MakeDivergingLut();
+// A perceptually uniform sequential map (viridis, 256 entries).
+vtkSmartPointer<vtkLookupTable> MakeSequentialLut();
+// A colour legend (hidden) in the scene's style for a lookup table.
+vtkSmartPointer<vtkScalarBarActor> MakeLegend(vtkLookupTable* lut, const char* title, const char* label_format);
+
+// The mapper colours its input by the named point array through the table.
+void ColourByArray(vtkPolyDataMapper* mapper, const char* array, vtkLookupTable* lut);
 
 inline vtkPolyDataMapper* MapperOf(vtkActor* actor) { return vtkPolyDataMapper::SafeDownCast(actor->GetMapper()); }
 

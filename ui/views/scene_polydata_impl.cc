@@ -148,6 +148,16 @@ vtkSmartPointer<vtkPolyData> HeatmapPolyData(const TriangleMesh& mesh) {
   return poly;
 }
 
+void SetPointArray(vtkPolyData* poly, const char* name, const std::vector<double>& values, double scale) {
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) array->SetValue(static_cast<vtkIdType>(i), values[i] * scale);
+  poly->GetPointData()->RemoveArray(name);
+  poly->GetPointData()->AddArray(array);
+  poly->Modified();
+}
+
 vtkSmartPointer<vtkPolyData> AlphaShapesPolyData(const std::vector<KeyframeShapes>& keyframes) {
   std::vector<Eigen::Vector3d> points;
   vtkNew<vtkCellArray> triangles;

@@ -35,6 +35,9 @@ vtkSmartPointer<vtkPolyData> SlabPolyData(const SlabBox& slab);
 // The fused model (in M) with its vertex normals and the point array
 // "deviation" (zero where the mesh has none).
 vtkSmartPointer<vtkPolyData> HeatmapPolyData(const TriangleMesh& mesh);
+// Adds (or replaces) a point array of the values times `scale`; values must
+// have one entry per point.
+void SetPointArray(vtkPolyData* poly, const char* name, const std::vector<double>& values, double scale = 1.0);
 // Every keyframe's alpha shapes, as triangles in g.
 vtkSmartPointer<vtkPolyData> AlphaShapesPolyData(const std::vector<KeyframeShapes>& keyframes);
 // Segments grouped per object, with the point array "object_index".

@@ -68,6 +68,18 @@ void SceneView::SetMapping(std::shared_ptr<const MappingRun> mapping) {
   ScheduleRender();
 }
 
+void SceneView::SetSignificanceK(double k) {
+  impl_->SetSignificanceK(k);
+  ScheduleRender();
+}
+
+std::size_t SceneView::SignificantVertices() const { return impl_->SignificantVertices(); }
+
+void SceneView::SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison) {
+  impl_->SetComparison(std::move(comparison));
+  ScheduleRender();
+}
+
 void SceneView::SetSlab(const std::optional<SlabBox>& slab) {
   impl_->SetSlab(slab);
   ScheduleRender();
@@ -155,6 +167,14 @@ SceneView::LayerStats SceneView::Stats(SceneLayer layer) const {
 bool SceneView::LegendVisible() const { return impl_->LegendVisible(); }
 
 std::pair<double, double> SceneView::LegendRange() const { return impl_->LegendRange(); }
+
+bool SceneView::SigmaLegendVisible() const { return impl_->SigmaLegendVisible(); }
+
+std::pair<double, double> SceneView::SigmaLegendRange() const { return impl_->SigmaLegendRange(); }
+
+bool SceneView::ChangeLegendVisible() const { return impl_->ChangeLegendVisible(); }
+
+std::pair<double, double> SceneView::ChangeLegendRange() const { return impl_->ChangeLegendRange(); }
 
 PickInfo SceneView::PickAt(const QPoint& position) {
   const QPoint local = vtk_widget_->mapFrom(this, position);

@@ -18,6 +18,7 @@
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
+#include "mapping/survey_compare.h"
 #include "survey/survey.h"
 #include "ui/models/cross_section.h"
 #include "ui/models/pick_details.h"
@@ -53,6 +54,13 @@ class SceneView : public QWidget {
   // Mapping's fused model (heatmap), alpha shapes and detected objects
   // (nullptr removes them).
   void SetMapping(std::shared_ptr<const MappingRun> mapping);
+  // The significance heatmap's factor k: a vertex is coloured by its
+  // deviation h where |h| > k sigma, grey elsewhere. Recomputed from the
+  // model's deviation and sigma (no re-run).
+  void SetSignificanceK(double k);
+  std::size_t SignificantVertices() const;  // at the current k, of the mapping on screen
+  // A comparison of two surveys, drawn as the height-change layer (nullptr removes it).
+  void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
   // The cross-section slab (nullopt removes it).
   void SetSlab(const std::optional<SlabBox>& slab);
   void SetOptions(const SceneOptions& options);
@@ -81,6 +89,10 @@ class SceneView : public QWidget {
   LayerStats Stats(SceneLayer layer) const;
   bool LegendVisible() const;
   std::pair<double, double> LegendRange() const;
+  bool SigmaLegendVisible() const;
+  std::pair<double, double> SigmaLegendRange() const;  // mm
+  bool ChangeLegendVisible() const;
+  std::pair<double, double> ChangeLegendRange() const;  // m
 
   // Picks at a widget position (as a click does) and emits picked().
   PickInfo PickAt(const QPoint& position);

@@ -2,7 +2,6 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
-#include <vtkColorTransferFunction.h>
 #include <vtkDataArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkImageData.h>
@@ -23,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "mapping/vertex_significance.h"
 #include "ui/views/scene_layers_impl.h"
 #include "ui/views/scene_polydata_impl.h"
 #include "ui/views/vtk_grab_impl.h"
@@ -63,41 +63,19 @@ SceneViewImpl::SceneViewImpl() {
   selection_->PickableOff();
   selection_->VisibilityOff();
 
-  // Moreland's cool-to-warm diverging map, sampled into a lookup table that
-  // the landmark mapper and the legend share.
-  vtkNew<vtkColorTransferFunction> ctf;
-  ctf->SetColorSpaceToDiverging();
-  ctf->AddRGBPoint(0.0, 0.230, 0.299, 0.754);
-  ctf->AddRGBPoint(0.5, 0.865, 0.865, 0.865);
-  ctf->AddRGBPoint(1.0, 0.706, 0.016, 0.150);
-  deviation_lut_ = vtkSmartPointer<vtkLookupTable>::New();
-  deviation_lut_->SetNumberOfTableValues(256);
-  for (int i = 0; i < 256; ++i) {
-    double rgb[3];
-    ctf->GetColor(i / 255.0, rgb);
-    deviation_lut_->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
-  }
-  deviation_lut_->Build();
-
-  legend_ = vtkSmartPointer<vtkScalarBarActor>::New();
-  legend_->SetLookupTable(deviation_lut_);
-  legend_->SetTitle("Deviation (m)");
-  legend_->SetNumberOfLabels(5);
-  legend_->SetLabelFormat("%+.3f");
-  legend_->SetMaximumWidthInPixels(110);
-  legend_->GetPositionCoordinate()->SetValue(0.85, 0.05);
-  legend_->SetWidth(0.13);
-  legend_->SetHeight(0.6);
-  legend_->UnconstrainedFontSizeOn();
-  legend_->SetVerticalTitleSeparation(6);
-  legend_->GetTitleTextProperty()->SetFontSize(14);
-  legend_->GetLabelTextProperty()->SetFontSize(12);
-  legend_->GetTitleTextProperty()->ItalicOff();
-  legend_->GetTitleTextProperty()->ShadowOff();
-  legend_->GetLabelTextProperty()->ItalicOff();
-  legend_->GetLabelTextProperty()->ShadowOff();
-  legend_->VisibilityOff();
+  // Moreland's cool-to-warm diverging map, shared by the landmark mappers,
+  // the heatmaps and the legend; NaN (not significant) is grey.
+  deviation_lut_ = MakeDivergingLut();
+  legend_ = MakeLegend(deviation_lut_, "Deviation (m)", "%+.3f");
+  legend_->SetNanAnnotation("not significant");
   renderer_->AddViewProp(legend_);
+  sigma_lut_ = MakeSequentialLut();
+  // VTK's embedded fonts have no Greek letters: "sigma" spelled out.
+  sigma_legend_ = MakeLegend(sigma_lut_, "sigma (mm)", "%.1f");
+  renderer_->AddViewProp(sigma_legend_);
+  change_lut_ = MakeDivergingLut();
+  change_legend_ = MakeLegend(change_lut_, "Change (m)", "%+.3f");
+  renderer_->AddViewProp(change_legend_);
 
   picker_ = vtkSmartPointer<vtkPointPicker>::New();
   picker_->SetTolerance(0.01);
@@ -127,6 +105,7 @@ void SceneViewImpl::SetMesh(std::shared_ptr<const TriangleMesh> mesh) {
 void SceneViewImpl::SetModelPose(const Pose& x_gM) {
   x_gM_ = x_gM;
   actors_[SceneLayer::kHull]->SetUserMatrix(PoseMatrix(x_gM));
+  actors_[SceneLayer::kHeightChange]->SetUserMatrix(PoseMatrix(x_gM));
   actors_[SceneLayer::kTruthObjects]->SetUserMatrix(PoseMatrix(x_gM));
 }
 
@@ -147,19 +126,72 @@ void SceneViewImpl::SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted
 
 void SceneViewImpl::SetMapping(std::shared_ptr<const MappingRun> mapping) {
   mapping_ = std::move(mapping);
+  max_sigma_ = 0;
   if (mapping_) {
-    SetData(actors_[SceneLayer::kHeatmap], HeatmapPolyData(mapping_->result->model));
+    const TriangleMesh& model = mapping_->result->model;
+    const auto heatmap = HeatmapPolyData(model);
+    SetData(actors_[SceneLayer::kHeatmap], heatmap);
+    // The sigma and significance heatmaps draw the same surface with other
+    // arrays (none without per-vertex sigmas).
+    const bool sigmas = HasVertexSigma(model);
+    if (sigmas) {
+      SetPointArray(heatmap, "sigma_mm", *model.FindScalar("sigma"), 1000.0);
+      max_sigma_ = MaxVertexSigma(model);
+    }
+    for (SceneLayer layer : {SceneLayer::kSigmaHeatmap, SceneLayer::kSignificance}) {
+      SetData(actors_[layer], sigmas ? heatmap.GetPointer() : vtkSmartPointer<vtkPolyData>::New().GetPointer());
+    }
     SetData(actors_[SceneLayer::kAlphaShapes], AlphaShapesPolyData(mapping_->result->keyframes));
     SetData(actors_[SceneLayer::kDetectedObjects], SegmentsPolyData(mapping_->overlays->object_outlines));
     const auto matrix = PoseMatrix(mapping_->x_gM());
-    actors_[SceneLayer::kHeatmap]->SetUserMatrix(matrix);
-    actors_[SceneLayer::kDetectedObjects]->SetUserMatrix(matrix);
+    for (SceneLayer layer :
+         {SceneLayer::kHeatmap, SceneLayer::kSigmaHeatmap, SceneLayer::kSignificance, SceneLayer::kDetectedObjects}) {
+      actors_[layer]->SetUserMatrix(matrix);
+    }
   } else {
-    for (SceneLayer layer : {SceneLayer::kHeatmap, SceneLayer::kAlphaShapes, SceneLayer::kDetectedObjects}) {
+    for (SceneLayer layer : {SceneLayer::kHeatmap, SceneLayer::kSigmaHeatmap, SceneLayer::kSignificance,
+                             SceneLayer::kAlphaShapes, SceneLayer::kDetectedObjects}) {
       SetData(actors_[layer], vtkSmartPointer<vtkPolyData>::New());
     }
   }
+  UpdateSignificance();
   selection_->VisibilityOff();
+  UpdateLandmarkColours();
+  UpdateVisibility();
+}
+
+void SceneViewImpl::SetSignificanceK(double k) {
+  significance_k_ = k;
+  UpdateSignificance();
+}
+
+void SceneViewImpl::UpdateSignificance() {
+  significant_vertices_ = 0;
+  vtkPolyData* data = DataOf(actors_[SceneLayer::kSignificance]);
+  if (!mapping_ || !data || data->GetNumberOfPoints() == 0) return;
+  const std::vector<double> mask = SignificantDeviation(mapping_->result->model, significance_k_);
+  for (const double h : mask) significant_vertices_ += !std::isnan(h);
+  SetPointArray(data, "significant_deviation", mask);
+  legend_->SetNanAnnotation(
+      QStringLiteral("|h| <= %1 sigma").arg(QString::number(significance_k_, 'g', 3)).toUtf8().constData());
+}
+
+void SceneViewImpl::SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison) {
+  comparison_ = std::move(comparison);
+  max_change_ = 0;
+  if (comparison_) {
+    const TriangleMesh& model = comparison_->comparison.model;
+    const auto poly = HeatmapPolyData(model);
+    if (const std::vector<double>* change = model.FindScalar("change")) {
+      SetPointArray(poly, "change", *change);
+      for (const double c : *change) {
+        if (std::isfinite(c)) max_change_ = std::max(max_change_, std::abs(c));
+      }
+    }
+    SetData(actors_[SceneLayer::kHeightChange], poly);
+  } else {
+    SetData(actors_[SceneLayer::kHeightChange], vtkSmartPointer<vtkPolyData>::New());
+  }
   UpdateLandmarkColours();
   UpdateVisibility();
 }
@@ -221,6 +253,39 @@ long long SceneViewImpl::LayerCells(SceneLayer layer) const {
 void SceneViewImpl::UpdateVisibility() {
   for (auto& [layer, actor] : actors_) actor->SetVisibility(options_.IsVisible(layer) && HasLayerData(layer));
   legend_->SetVisibility(LegendVisible());
+  legend_->SetDrawNanAnnotation(SignificanceShown());
+  sigma_legend_->SetVisibility(SigmaLegendVisible());
+  change_legend_->SetVisibility(ChangeLegendVisible());
+  PlaceLegends();
+}
+
+void SceneViewImpl::PlaceLegends() {
+  // Right to left: deviation, sigma, height change.
+  double x = 0.85;
+  for (vtkScalarBarActor* legend : {legend_.GetPointer(), sigma_legend_.GetPointer(), change_legend_.GetPointer()}) {
+    if (!legend->GetVisibility()) continue;
+    legend->GetPositionCoordinate()->SetValue(x, 0.05);
+    x -= 0.15;
+  }
+}
+
+bool SceneViewImpl::SignificanceShown() const {
+  return options_.IsVisible(SceneLayer::kSignificance) && HasLayerData(SceneLayer::kSignificance);
+}
+
+bool SceneViewImpl::SigmaLegendVisible() const {
+  return options_.IsVisible(SceneLayer::kSigmaHeatmap) && HasLayerData(SceneLayer::kSigmaHeatmap);
+}
+
+std::pair<double, double> SceneViewImpl::SigmaLegendRange() const { return {0.0, std::max(1000.0 * max_sigma_, 1e-3)}; }
+
+bool SceneViewImpl::ChangeLegendVisible() const {
+  return options_.IsVisible(SceneLayer::kHeightChange) && HasLayerData(SceneLayer::kHeightChange);
+}
+
+std::pair<double, double> SceneViewImpl::ChangeLegendRange() const {
+  const double m = std::max(max_change_, 1e-3);
+  return {-m, m};
 }
 
 bool SceneViewImpl::TruthDeviationsShown() const {
@@ -237,7 +302,7 @@ bool SceneViewImpl::HeatmapShown() const {
 }
 
 bool SceneViewImpl::LegendVisible() const {
-  return HeatmapShown() ||
+  return HeatmapShown() || SignificanceShown() ||
          (options_.colouring == LandmarkColouring::kDeviation && (TruthDeviationsShown() || AdjustedDeviationsShown()));
 }
 
@@ -250,7 +315,7 @@ std::pair<double, double> SceneViewImpl::EffectiveRange() const {
   if (AdjustedDeviationsShown()) {
     m = std::max({m, std::abs(adjusted_->min_deviation), std::abs(adjusted_->max_deviation)});
   }
-  if (HeatmapShown()) {
+  if (HeatmapShown() || SignificanceShown()) {
     m = std::max({m, std::abs(mapping_->overlays->min_deviation), std::abs(mapping_->overlays->max_deviation)});
   }
   return {-m, m};
@@ -264,14 +329,14 @@ void SceneViewImpl::UpdateLandmarkColours() {
   for (SceneLayer layer : {SceneLayer::kLandmarks, SceneLayer::kAdjustedLandmarks}) {
     ColourLandmarks(MapperOf(actors_[layer]));
   }
-  vtkPolyDataMapper* heatmap = MapperOf(actors_[SceneLayer::kHeatmap]);
-  heatmap->ScalarVisibilityOn();
-  heatmap->SetScalarModeToUsePointFieldData();
-  heatmap->SelectColorArray("deviation");
-  heatmap->SetColorModeToMapScalars();
-  heatmap->SetLookupTable(deviation_lut_);
-  heatmap->UseLookupTableScalarRangeOn();
-  heatmap->Modified();
+  ColourByArray(MapperOf(actors_[SceneLayer::kHeatmap]), "deviation", deviation_lut_);
+  ColourByArray(MapperOf(actors_[SceneLayer::kSignificance]), "significant_deviation", deviation_lut_);
+  const auto [slo, shi] = SigmaLegendRange();
+  sigma_lut_->SetTableRange(slo, shi);
+  ColourByArray(MapperOf(actors_[SceneLayer::kSigmaHeatmap]), "sigma_mm", sigma_lut_);
+  const auto [clo, chi] = ChangeLegendRange();
+  change_lut_->SetTableRange(clo, chi);
+  ColourByArray(MapperOf(actors_[SceneLayer::kHeightChange]), "change", change_lut_);
 }
 
 void SceneViewImpl::ColourLandmarks(vtkPolyDataMapper* mapper) {
@@ -309,6 +374,8 @@ void SceneViewImpl::ResetCamera() {
     box = overlays_->bounds;
   } else if (mesh_ && !mesh_->empty()) {
     for (const auto& v : mesh_->vertices) box.extend(x_gM_ * v);
+  } else if (comparison_ && !comparison_->comparison.model.empty()) {
+    for (const auto& v : comparison_->comparison.model.vertices) box.extend(x_gM_ * v);
   } else {
     box.extend(Eigen::Vector3d(-1, -1, -1));
     box.extend(Eigen::Vector3d(1, 1, 1));
@@ -369,6 +436,8 @@ void SceneViewImpl::WarmUp() {
   tri.faces = {Face{0, 1, 2}};
   tri.ComputeNormals();
   tri.SetScalar("deviation", {0.0, 0.01, -0.01});
+  tri.SetScalar("sigma", {0.001, 0.002, 0.003});
+  tri.SetScalar("change", {0.0, 0.01, -0.01});
   const std::vector<Eigen::Vector3d> points = {c, c + Eigen::Vector3d(e, 0, 0)};
   LandmarkMarker marker;
   marker.position = c;
@@ -393,7 +462,13 @@ void SceneViewImpl::WarmUp() {
         stand_in = MeshPolyData(tri);
         break;
       case SceneLayer::kHeatmap:
+      case SceneLayer::kSigmaHeatmap:
+      case SceneLayer::kSignificance:
+      case SceneLayer::kHeightChange:
         stand_in = HeatmapPolyData(tri);
+        SetPointArray(stand_in, "sigma_mm", {1.0, 2.0, 3.0});
+        SetPointArray(stand_in, "significant_deviation", {std::nan(""), 0.01, -0.01});
+        SetPointArray(stand_in, "change", {0.0, 0.01, -0.01});
         break;
       case SceneLayer::kAlphaShapes:
         stand_in = AlphaShapesPolyData({shapes});

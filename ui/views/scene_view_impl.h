@@ -12,6 +12,7 @@
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
+#include "mapping/survey_compare.h"
 #include "survey/survey.h"
 #include "ui/models/cross_section.h"
 #include "ui/models/pick_details.h"
@@ -44,6 +45,13 @@ class SceneViewImpl {
   void SetSlab(const std::optional<SlabBox>& slab);
   // The fused model, alpha shapes and detected objects (nullptr removes them).
   void SetMapping(std::shared_ptr<const MappingRun> mapping);
+  // The significance factor k of the significance heatmap (|h| > k sigma).
+  void SetSignificanceK(double k);
+  double significanceK() const { return significance_k_; }
+  std::size_t SignificantVertices() const { return significant_vertices_; }
+  // A comparison of two surveys: survey B's model (in M, placed by x_gM)
+  // coloured by the change in height (nullptr removes it).
+  void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
   void SetOptions(const SceneOptions& options);
   const SceneOptions& options() const { return options_; }
 
@@ -65,6 +73,10 @@ class SceneViewImpl {
   long long LayerCells(SceneLayer layer) const;
   bool LegendVisible() const;
   std::pair<double, double> LegendRange() const;
+  bool SigmaLegendVisible() const;
+  std::pair<double, double> SigmaLegendRange() const;  // mm
+  bool ChangeLegendVisible() const;
+  std::pair<double, double> ChangeLegendRange() const;  // m
 
   // Display coordinates: pixels from the bottom-left corner.
   PickInfo Pick(double x, double y);
@@ -78,6 +90,9 @@ class SceneViewImpl {
   bool TruthDeviationsShown() const;
   bool AdjustedDeviationsShown() const;
   bool HeatmapShown() const;
+  bool SignificanceShown() const;
+  void UpdateSignificance();
+  void PlaceLegends();
   void UpdateFrusta();
   Eigen::Vector3d ShowSelection(const Eigen::Vector3d& p_g);  // returns p_g
   std::pair<double, double> EffectiveRange() const;
@@ -88,6 +103,8 @@ class SceneViewImpl {
   vtkSmartPointer<vtkActor> selection_;
   vtkSmartPointer<vtkLookupTable> deviation_lut_;
   vtkSmartPointer<vtkScalarBarActor> legend_;
+  vtkSmartPointer<vtkLookupTable> sigma_lut_, change_lut_;
+  vtkSmartPointer<vtkScalarBarActor> sigma_legend_, change_legend_;
   vtkSmartPointer<vtkPointPicker> picker_;
 
   std::shared_ptr<const TriangleMesh> mesh_;
@@ -95,6 +112,10 @@ class SceneViewImpl {
   std::shared_ptr<const SurveyOverlays> overlays_;
   std::shared_ptr<const AdjustedOverlays> adjusted_;
   std::shared_ptr<const MappingRun> mapping_;
+  std::shared_ptr<const SurveyComparisonRun> comparison_;
+  double significance_k_ = 1.96;
+  std::size_t significant_vertices_ = 0;
+  double max_sigma_ = 0, max_change_ = 0;
   Pose x_gM_;
   SceneOptions options_;
   int frusta_stride_built_ = 0;  // 0: not built for the current survey

@@ -10,6 +10,8 @@
 #include <filesystem>
 
 #include "base/error.h"
+#include "base/file_io.h"
+#include "base/progress.h"
 #include "support/test_meshes.h"
 
 namespace hull {
@@ -98,6 +100,48 @@ TEST(SurveyCompare, ChangesPerVertexAndPerObject) {
   SurveyCompareOptions bad;
   bad.match_radius = 0;
   EXPECT_THROW(CompareSurveys(cad, ma, {}, mb, {}, bad), OptionError);
+}
+
+TEST(SurveyCompare, ReportsProgressAndStopsWhenCancelled) {
+  TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
+  for (Face& f : cad.faces) std::swap(f[1], f[2]);
+  cad.ComputeNormals();
+  const std::vector<Lump> a = {{{0.5, 0.5}, 0.10}};
+  double last = -1;
+  bool monotone = true;
+  CallbackProgress progress([&](double f, const std::string&) {
+    monotone = monotone && f >= last;
+    last = f;
+  });
+  const SurveyComparison c =
+      CompareSurveys(cad, Model(a, 0.004), Objects(a, "a"), Model(a, 0.004), Objects(a, "b"), {}, progress);
+  EXPECT_TRUE(monotone);
+  EXPECT_DOUBLE_EQ(last, 1.0);
+  EXPECT_EQ(c.significant_vertices, 0u);
+  CallbackProgress cancelled;
+  cancelled.RequestCancel();
+  EXPECT_THROW(CompareSurveys(cad, Model(a, 0.004), {}, Model(a, 0.004), {}, {}, cancelled), Cancelled);
+}
+
+TEST(SurveyCompare, FindsTheMappingResultsOfAFolder) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::path(::testing::TempDir()) / "hi_compare_find";
+  fs::remove_all(root);
+  fs::create_directories(root / "run" / "mapping");
+  fs::create_directories(root / "map");
+  fs::create_directories(root / "empty");
+  WriteFileAtomic((root / "run" / "mapping" / "model.ply").string(), "x");
+  WriteFileAtomic((root / "map" / "model.ply").string(), "x");
+  EXPECT_EQ(FindMappingResults((root / "run").string()), (root / "run" / "mapping").string());
+  EXPECT_EQ(FindMappingResults((root / "map").string()), (root / "map").string());
+  EXPECT_FALSE(FindMappingResults((root / "empty").string()));
+  NullProgress none;
+  try {
+    RunSurveyComparison((root / "map").string(), (root / "empty").string(), "", 1.0, {}, none);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("empty"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

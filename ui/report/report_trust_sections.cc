@@ -1,0 +1,162 @@
+// The report's uncertainty and change sections: the fused model's per-vertex
+// sigma and significance (M3C2's level of detection, |h| > k sigma) and,
+// with a comparison, the change since an earlier survey of the hull.
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "mapping/vertex_significance.h"
+#include "ui/report/report_blocks.h"
+#include "ui/report/report_sections.h"
+
+namespace hull::report {
+namespace {
+
+std::string SideWords(HullView v) {
+  switch (v) {
+    case HullView::kBottom:
+      return "from below";
+    case HullView::kPort:
+      return "from the port side";
+    case HullView::kStarboard:
+      return "from the starboard side";
+  }
+  return "";
+}
+
+bool HasSigma(const ReportInputs& in) { return in.mapping && HasVertexSigma(in.mapping->model); }
+
+}  // namespace
+
+void PlanTrustFigures(const ReportInputs& in, const ReportOptions& options, std::vector<FigureRef>& figures) {
+  std::vector<HullView> views;
+  for (const FigureRef& f : figures) {
+    if (f.kind == FigureKind::kHeatmap) views.push_back(f.view);
+  }
+  const std::string k = Num(options.significance_k, 2);
+  if (HasSigma(in)) {
+    for (const HullView v : views) {
+      FigureRef f;
+      f.id = std::string("sigma-") + HullViewName(v);
+      f.kind = FigureKind::kSigmaHeatmap;
+      f.view = v;
+      f.title = "Uncertainty of the deviation, " + SideWords(v);
+      f.caption =
+          "The fused model coloured by each vertex's standard deviation σ of its deviation (the σ_h of the nearest "
+          "adjusted feature, from the adjustment's covariance), seen " +
+          SideWords(v) + "; grey where no feature has a σ.";
+      figures.push_back(f);
+    }
+    for (const HullView v : views) {
+      FigureRef f;
+      f.id = std::string("significance-") + HullViewName(v);
+      f.kind = FigureKind::kSignificanceHeatmap;
+      f.view = v;
+      f.title = "Significant deviation, " + SideWords(v);
+      f.caption = "The fused model's deviation h where it exceeds its level of detection, |h| > " + k +
+                  " σ (red: off the hull, blue: below it), and grey where it does not, seen " + SideWords(v) + ".";
+      figures.push_back(f);
+    }
+  }
+  if (in.comparison) {
+    for (const HullView v : views) {
+      FigureRef f;
+      f.id = std::string("change-") + HullViewName(v);
+      f.kind = FigureKind::kChangeHeatmap;
+      f.view = v;
+      f.title = "Change in height since the earlier survey, " + SideWords(v);
+      f.caption =
+          "This survey's (B's) fused model coloured by its change in height since survey A at the same point of "
+          "the CAD surface (red: grown, blue: lower), seen " +
+          SideWords(v) + ".";
+      figures.push_back(f);
+    }
+  }
+}
+
+Section UncertaintySection(const ReportInputs& in, const ReportOptions& options,
+                           const std::vector<FigureRef>& figures) {
+  Section s{"uncertainty", "Uncertainty and significance", true, {}};
+  if (!in.mapping) {
+    s.blocks.push_back(Paragraph("Mapping has not run: there is no fused model to give an uncertainty."));
+    return s;
+  }
+  if (!HasSigma(in)) {
+    s.blocks.push_back(
+        Paragraph("The adjustment gave no landmark covariances (adjust --covariance none), so the fused model has no "
+                  "per-vertex σ and no deviation can be called significant."));
+    return s;
+  }
+  const TriangleMesh& model = in.mapping->model;
+  const std::vector<double>& sigma = *model.FindScalar("sigma");
+  std::vector<double> finite;
+  for (const double v : sigma) {
+    if (std::isfinite(v)) finite.push_back(v);
+  }
+  const std::size_t significant = CountSignificant(model, options.significance_k);
+  s.blocks.push_back(Paragraph(
+      "The adjustment gives each feature a covariance, propagated to the standard deviation σ_h of its signed "
+      "distance from the CAD surface; each vertex of the fused model takes the σ_h of the nearest feature. Over the " +
+      Count(finite.size()) + " vertices with a σ it runs from " + Quantile(finite, 0.0, 4) + " m to " +
+      Quantile(finite, 1.0, 4) + " m (median " + Quantile(finite, 0.5, 4) +
+      " m). A deviation h is significant "
+      "where |h| > k σ (k = " +
+      Num(options.significance_k, 2) + "; 1.96 is the 95 % level of detection for a normal error): " +
+      Count(static_cast<long long>(significant)) + " of " + Count(static_cast<long long>(model.num_vertices())) +
+      " vertices (" + Percent(model.num_vertices() ? double(significant) / model.num_vertices() : 0.0, 1) + ")."));
+  for (const FigureRef& f : figures) {
+    if (f.kind == FigureKind::kSigmaHeatmap || f.kind == FigureKind::kSignificanceHeatmap) {
+      s.blocks.push_back(FigureBlock(f));
+    }
+  }
+  return s;
+}
+
+Section ChangeSection(const ReportInputs& in, const std::vector<FigureRef>& figures) {
+  Section s{"change", "Change between surveys", true, {}};
+  if (!in.comparison) {
+    s.blocks.push_back(
+        Paragraph("No earlier survey of this hull was compared with this one (the GUI's Inspection ▸ Compare with…, or "
+                  "hullinspect --report RESULTS --compare-with EARLIER_RESULTS)."));
+    return s;
+  }
+  const SurveyComparisonRun& r = *in.comparison;
+  const SurveyComparison& c = r.comparison;
+  std::array<int, 5> n{};
+  for (const ObjectChange& o : c.objects) ++n[static_cast<std::size_t>(o.kind)];
+  auto count = [&](ObjectChangeKind k) { return n[static_cast<std::size_t>(k)]; };
+  s.blocks.push_back(
+      Facts({{"Survey A (earlier)", r.folder_a},
+             {"Survey B (this one)", r.folder_b},
+             {"CAD mesh", r.mesh.empty() ? "(in memory)" : r.mesh},
+             {"Vertices changed significantly", Count(static_cast<long long>(c.significant_vertices)) + " of " +
+                                                    Count(static_cast<long long>(c.model.num_vertices()))},
+             {"Objects", Format("%d new, %d grown, %d shrunk, %d removed, %d unchanged", count(ObjectChangeKind::kNew),
+                                count(ObjectChangeKind::kGrown), count(ObjectChangeKind::kShrunk),
+                                count(ObjectChangeKind::kRemoved), count(ObjectChangeKind::kUnchanged))}}));
+  s.blocks.push_back(Paragraph(
+      "Both surveys were mapped against the same CAD mesh. The change in height at a vertex of B's model is B's "
+      "deviation minus A's at the same point of the CAD surface; it is significant where it exceeds k times the "
+      "combined σ of both. Objects are matched by the position of their centroids, closest pairs first; a matched "
+      "object grew or shrank when its maximum height changed by the threshold or more."));
+  Table t = MakeTable({{"Change", false},
+                       {"Survey A", false},
+                       {"Survey B", false},
+                       {"x, y, z (m)", true},
+                       {"Height A (m)", true},
+                       {"Height B (m)", true},
+                       {"Height change (m)", true}});
+  for (const ObjectChange& o : c.objects) {
+    t.rows.push_back({ObjectChangeKindName(o.kind), o.id_a.empty() ? "–" : o.id_a, o.id_b.empty() ? "–" : o.id_b,
+                      Format("%.2f, %.2f, %.2f", o.centroid.x(), o.centroid.y(), o.centroid.z()),
+                      o.id_a.empty() ? "–" : Num(o.height_a, 3), o.id_b.empty() ? "–" : Num(o.height_b, 3),
+                      Format("%+.3f", o.change)});
+  }
+  s.blocks.push_back(TableBlock(std::move(t)));
+  for (const FigureRef& f : figures) {
+    if (f.kind == FigureKind::kChangeHeatmap) s.blocks.push_back(FigureBlock(f));
+  }
+  return s;
+}
+
+}  // namespace hull::report
