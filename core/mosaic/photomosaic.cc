@@ -8,7 +8,6 @@
 #include <chrono>
 #include <cmath>
 #include <future>
-#include <map>
 #include <memory>
 #include <numeric>
 #include <opencv2/core.hpp>
@@ -17,16 +16,27 @@
 #include "base/error.h"
 #include "geometry/mesh_index.h"
 #include "mosaic/mosaic_camera.h"
+#include "mosaic/photomosaic_internal.h"
 #include "simulate/survey_imaging.h"
 
 namespace hull {
 namespace {
 
+using mosaic_internal::Barycentric;
+using mosaic_internal::Candidate;
+using mosaic_internal::Chart;
+using mosaic_internal::ChooseViews;
+using mosaic_internal::FaceNeighbours;
+using mosaic_internal::FeatherWeights;
+using mosaic_internal::FlatChart;
+using mosaic_internal::kSamples;
+using mosaic_internal::PackShelves;
+using mosaic_internal::Sample;
+using mosaic_internal::SplitLongEdges;
+using mosaic_internal::ViewWeights;
+
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-constexpr int kSamples = 4;  // points per face for visibility and gains
-constexpr int kMaxViewsPerVertex = 4;
 
 // The centroid and three points toward the corners (85 % of the way): a face
 // counts as seen only when all four are.
@@ -43,220 +53,6 @@ double Percentile(std::vector<double> v, double q) {
   std::sort(v.begin(), v.end());
   const std::size_t k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
   return v[std::min(v.size() - 1, k == 0 ? 0 : k - 1)];
-}
-
-struct Candidate {
-  int view = -1;
-  float score = 0;  // cos(incidence) / distance^2
-  float value = 0;  // mean normalised value at the face's samples (before gains); <= 0: unusable for gains
-};
-
-// Bilinear sample of an 8/16-bit, 1- or 3-channel image at pixel position
-// (u, v) (pixel centres at integers), as shares of full scale; false outside.
-bool Sample(const cv::Mat& img, double u, double v, float* out) {
-  if (!(u >= 0 && v >= 0 && u <= img.cols - 1 && v <= img.rows - 1)) return false;
-  const int x0 = std::min(static_cast<int>(u), img.cols - 2 < 0 ? 0 : img.cols - 2);
-  const int y0 = std::min(static_cast<int>(v), img.rows - 2 < 0 ? 0 : img.rows - 2);
-  const int x1 = std::min(x0 + 1, img.cols - 1), y1 = std::min(y0 + 1, img.rows - 1);
-  const float fx = static_cast<float>(u - x0), fy = static_cast<float>(v - y0);
-  const int ch = img.channels();
-  const bool wide = img.depth() == CV_16U;
-  const float scale = wide ? 1.0f / 65535.0f : 1.0f / 255.0f;
-  auto at = [&](int y, int x, int c) -> float {
-    return wide ? img.ptr<std::uint16_t>(y)[x * ch + c] : img.ptr<std::uint8_t>(y)[x * ch + c];
-  };
-  for (int c = 0; c < ch; ++c) {
-    const float top = (1 - fx) * at(y0, x0, c) + fx * at(y0, x1, c);
-    const float bot = (1 - fx) * at(y1, x0, c) + fx * at(y1, x1, c);
-    out[c] = ((1 - fy) * top + fy * bot) * scale;
-  }
-  return true;
-}
-
-// A face's rectangle in the atlas and its corners there.
-struct Chart {
-  int x = 0, y = 0, w = 0, h = 0;        // texels
-  std::array<Eigen::Vector2d, 3> local;  // corners in texels relative to (x, y)
-};
-
-// Lays the triangle out flat (longest edge along x) at `texel` m per texel
-// with one texel of border.
-Chart FlatChart(const TriangleMesh& m, int f, double texel) {
-  const Face& F = m.faces[static_cast<std::size_t>(f)];
-  std::array<Eigen::Vector3d, 3> p;
-  for (int i = 0; i < 3; ++i) p[static_cast<std::size_t>(i)] = m.vertices[static_cast<std::size_t>(F[i])];
-  int base = 0;  // corner where the longest edge (base -> base+1) starts
-  double longest = -1;
-  for (int i = 0; i < 3; ++i) {
-    const double l = (p[static_cast<std::size_t>((i + 1) % 3)] - p[static_cast<std::size_t>(i)]).norm();
-    if (l > longest) longest = l, base = i;
-  }
-  const Eigen::Vector3d a = p[static_cast<std::size_t>(base)], b = p[static_cast<std::size_t>((base + 1) % 3)],
-                        c = p[static_cast<std::size_t>((base + 2) % 3)];
-  const double ab = std::max((b - a).norm(), 1e-12);
-  const Eigen::Vector3d ex = (b - a) / ab;
-  const double cx = (c - a).dot(ex), cy = ((c - a) - cx * ex).norm();
-  constexpr double kBorder = 1.0;
-  Chart ch;
-  ch.w = static_cast<int>(std::ceil(ab / texel + 2 * kBorder)) + 1;
-  ch.h = static_cast<int>(std::ceil(cy / texel + 2 * kBorder)) + 1;
-  ch.local[static_cast<std::size_t>(base)] = {kBorder, kBorder};
-  ch.local[static_cast<std::size_t>((base + 1) % 3)] = {kBorder + ab / texel, kBorder};
-  ch.local[static_cast<std::size_t>((base + 2) % 3)] = {kBorder + cx / texel, kBorder + cy / texel};
-  return ch;
-}
-
-// Shelf packing (tallest first) into rows of `width` texels; returns the height.
-int PackShelves(std::vector<Chart>& charts, const std::vector<int>& order, int width) {
-  int x = 0, y = 0, row = 0;
-  for (int f : order) {
-    Chart& c = charts[static_cast<std::size_t>(f)];
-    if (x + c.w > width) {
-      y += row;
-      x = 0;
-      row = 0;
-    }
-    c.x = x;
-    c.y = y;
-    x += c.w;
-    row = std::max(row, c.h);
-  }
-  return y + row;
-}
-
-// Barycentric coordinates of q in the 2-D triangle, clamped onto it (the
-// closest point of the triangle in barycentric form); `inside` says whether
-// q was inside already.
-Eigen::Vector3d Barycentric(const std::array<Eigen::Vector2d, 3>& t, const Eigen::Vector2d& q, bool* inside) {
-  const Eigen::Vector2d v0 = t[1] - t[0], v1 = t[2] - t[0], v2 = q - t[0];
-  const double d00 = v0.dot(v0), d01 = v0.dot(v1), d11 = v1.dot(v1), d20 = v2.dot(v0), d21 = v2.dot(v1);
-  const double den = d00 * d11 - d01 * d01;
-  Eigen::Vector3d b(1.0 / 3, 1.0 / 3, 1.0 / 3);
-  if (std::abs(den) > 1e-18) {
-    const double v = (d11 * d20 - d01 * d21) / den, w = (d00 * d21 - d01 * d20) / den;
-    b = {1 - v - w, v, w};
-  }
-  *inside = b.minCoeff() >= -1e-9;
-  if (*inside) return b;
-  // Closest point on the three edges; within kExtrapolate texels of the
-  // triangle the plane is extended instead (the border texels a bilinear
-  // lookup inside the triangle reaches continue the texture).
-  constexpr double kExtrapolate = 1.5;
-  double best = 1e300;
-  Eigen::Vector3d out = b;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector2d& a = t[static_cast<std::size_t>(i)];
-    const Eigen::Vector2d& e = t[static_cast<std::size_t>((i + 1) % 3)];
-    const Eigen::Vector2d ae = e - a;
-    const double s = std::clamp(ae.squaredNorm() > 0 ? (q - a).dot(ae) / ae.squaredNorm() : 0.0, 0.0, 1.0);
-    const double d = (a + s * ae - q).squaredNorm();
-    if (d < best) {
-      best = d;
-      out.setZero();
-      out[i] = 1 - s;
-      out[(i + 1) % 3] = s;
-    }
-  }
-  return best <= kExtrapolate * kExtrapolate ? b : out;
-}
-
-// Sparse per-vertex view weights.
-struct ViewWeights {
-  std::array<int, kMaxViewsPerVertex> view;
-  std::array<float, kMaxViewsPerVertex> weight;
-  ViewWeights() {
-    view.fill(-1);
-    weight.fill(0);
-  }
-  float Of(int v) const {
-    for (int i = 0; i < kMaxViewsPerVertex; ++i) {
-      if (view[static_cast<std::size_t>(i)] == v) return weight[static_cast<std::size_t>(i)];
-    }
-    return 0;
-  }
-};
-
-ViewWeights Strongest(std::map<int, double>& acc) {
-  std::vector<std::pair<double, int>> all;
-  for (const auto& [v, w] : acc) {
-    if (w > 0) all.emplace_back(w, v);
-  }
-  std::sort(all.begin(), all.end(),
-            [](const auto& a, const auto& b) { return a.first != b.first ? a.first > b.first : a.second < b.second; });
-  ViewWeights out;
-  double sum = 0;
-  for (std::size_t i = 0; i < all.size() && i < kMaxViewsPerVertex; ++i) sum += all[i].first;
-  for (std::size_t i = 0; i < all.size() && i < kMaxViewsPerVertex; ++i) {
-    out.view[i] = all[i].second;
-    out.weight[i] = static_cast<float>(all[i].first / sum);
-  }
-  return out;
-}
-
-// Splits every edge longer than max_edge of the faces that `near` accepts,
-// conformingly: each round bisects the marked edges, a face with one, two
-// or three marked edges becomes two, three or four triangles.
-void SplitLongEdges(TriangleMesh& m, double max_edge, const std::function<bool(int)>& near) {
-  std::vector<char> active(m.num_faces(), 0);
-  for (std::size_t f = 0; f < m.num_faces(); ++f) active[f] = near(static_cast<int>(f)) ? 1 : 0;
-  const double l2 = max_edge * max_edge;
-  for (int round = 0; round < 30; ++round) {
-    std::map<std::pair<int, int>, int> mid;  // marked edge -> new vertex
-    for (std::size_t f = 0; f < m.num_faces(); ++f) {
-      if (!active[f]) continue;
-      for (int i = 0; i < 3; ++i) {
-        const int a = m.faces[f][i], b = m.faces[f][(i + 1) % 3];
-        if ((m.vertices[static_cast<std::size_t>(a)] - m.vertices[static_cast<std::size_t>(b)]).squaredNorm() <= l2) {
-          continue;
-        }
-        const auto key = std::minmax(a, b);
-        if (mid.count(key)) continue;
-        mid[key] = static_cast<int>(m.vertices.size());
-        m.vertices.push_back(0.5 * (m.vertices[static_cast<std::size_t>(a)] + m.vertices[static_cast<std::size_t>(b)]));
-      }
-    }
-    if (mid.empty()) break;
-    std::vector<Face> faces;
-    std::vector<char> next_active;
-    faces.reserve(m.faces.size() + 3 * mid.size());
-    for (std::size_t f = 0; f < m.num_faces(); ++f) {
-      const Face F = m.faces[f];
-      int e[3];
-      int marked = 0;
-      for (int i = 0; i < 3; ++i) {
-        const auto it = mid.find(std::minmax(F[i], F[(i + 1) % 3]));
-        e[i] = it == mid.end() ? -1 : it->second;
-        marked += e[i] >= 0 ? 1 : 0;
-      }
-      auto add = [&](int a, int b, int c) {
-        faces.push_back({a, b, c});
-        next_active.push_back(active[f]);
-      };
-      if (marked == 0) {
-        add(F[0], F[1], F[2]);
-      } else if (marked == 3) {
-        add(F[0], e[0], e[2]);
-        add(e[0], F[1], e[1]);
-        add(e[2], e[1], F[2]);
-        add(e[0], e[1], e[2]);
-      } else if (marked == 1) {
-        const int i = e[0] >= 0 ? 0 : e[1] >= 0 ? 1 : 2;  // edge F[i] -> F[i+1]
-        add(F[i], e[i], F[(i + 2) % 3]);
-        add(e[i], F[(i + 1) % 3], F[(i + 2) % 3]);
-      } else {
-        const int i = e[0] < 0 ? 0 : e[1] < 0 ? 1 : 2;  // the unmarked edge F[i] -> F[i+1]
-        const int a = F[i], b = F[(i + 1) % 3], c = F[(i + 2) % 3];
-        const int mbc = e[(i + 1) % 3], mca = e[(i + 2) % 3];
-        add(mca, mbc, c);
-        add(a, b, mbc);
-        add(a, mbc, mca);
-      }
-    }
-    m.faces.swap(faces);
-    active.swap(next_active);
-  }
-  m.vertex_scalars.clear();  // per-vertex values (deviation, fusions) do not survive the split
-  m.ComputeNormals();
 }
 
 }  // namespace
@@ -422,57 +218,8 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
   progress.Update(0.2, "choosing a view per face");
   const auto t_label = Clock::now();
   // Face adjacency over shared edges.
-  std::vector<std::array<int, 3>> nbr(nf, {-1, -1, -1});
-  {
-    std::vector<std::pair<std::uint64_t, int>> edges;
-    edges.reserve(3 * nf);
-    for (std::size_t f = 0; f < nf; ++f) {
-      for (int i = 0; i < 3; ++i) {
-        const auto a = static_cast<std::uint64_t>(model.faces[f][i]),
-                   b = static_cast<std::uint64_t>(model.faces[f][(i + 1) % 3]);
-        edges.emplace_back(std::min(a, b) << 32 | std::max(a, b), static_cast<int>(f) * 3 + i);
-      }
-    }
-    std::sort(edges.begin(), edges.end());
-    for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
-      if (edges[i].first != edges[i + 1].first) continue;
-      if (i + 2 < edges.size() && edges[i + 2].first == edges[i].first) continue;  // non-manifold: no neighbours
-      if (i > 0 && edges[i - 1].first == edges[i].first) continue;
-      const int fa = edges[i].second / 3, ea = edges[i].second % 3, fb = edges[i + 1].second / 3,
-                eb = edges[i + 1].second % 3;
-      nbr[static_cast<std::size_t>(fa)][static_cast<std::size_t>(ea)] = fb;
-      nbr[static_cast<std::size_t>(fb)][static_cast<std::size_t>(eb)] = fa;
-    }
-  }
-  R.faces.assign(nf, MosaicFace{});
-  std::vector<float> best_score(nf, 0);
-  for (std::size_t f = 0; f < nf; ++f) {
-    MosaicFace& F = R.faces[f];
-    F.candidates = static_cast<int>(cand[f].size());
-    for (const Candidate& c : cand[f]) {
-      if (c.score > best_score[f]) best_score[f] = c.score, F.view = c.view;
-    }
-  }
-  for (int it = 0; it < options.label_iterations && options.seam_weight > 0; ++it) {
-    std::size_t changed = 0;
-    for (std::size_t f = 0; f < nf; ++f) {
-      if (cand[f].size() < 2) continue;
-      double best = 1e300;
-      int label = R.faces[f].view;
-      for (const Candidate& c : cand[f]) {
-        double e = -std::log(c.score / best_score[f]);
-        for (int n : nbr[f]) {
-          if (n >= 0 && R.faces[static_cast<std::size_t>(n)].view >= 0 &&
-              R.faces[static_cast<std::size_t>(n)].view != c.view) {
-            e += options.seam_weight;
-          }
-        }
-        if (e < best - 1e-12) best = e, label = c.view;
-      }
-      if (label != R.faces[f].view) ++changed, R.faces[f].view = label;
-    }
-    if (changed == 0) break;
-  }
+  const std::vector<std::array<int, 3>> nbr = FaceNeighbours(model);
+  R.faces = ChooseViews(cand, nbr, options);
   for (std::size_t f = 0; f < nf; ++f) {
     MosaicFace& F = R.faces[f];
     if (F.view < 0) continue;
@@ -492,43 +239,7 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
 
   // ---- Feathering weights per vertex: the views of the incident faces by
   // area, smoothed over feather_rings one-rings.
-  std::vector<ViewWeights> vw(nv);
-  {
-    std::vector<std::map<int, double>> acc(nv);
-    for (std::size_t f = 0; f < nf; ++f) {
-      if (R.faces[f].view < 0) continue;
-      const double a = model.FaceArea(static_cast<int>(f));
-      for (int i = 0; i < 3; ++i) acc[static_cast<std::size_t>(model.faces[f][i])][R.faces[f].view] += a;
-    }
-    for (std::size_t v = 0; v < nv; ++v) vw[v] = Strongest(acc[v]);
-    std::vector<std::vector<int>> ring(nv);
-    for (const Face& F : model.faces) {
-      for (int i = 0; i < 3; ++i) {
-        ring[static_cast<std::size_t>(F[i])].push_back(F[(i + 1) % 3]);
-        ring[static_cast<std::size_t>(F[i])].push_back(F[(i + 2) % 3]);
-      }
-    }
-    for (auto& r : ring) {
-      std::sort(r.begin(), r.end());
-      r.erase(std::unique(r.begin(), r.end()), r.end());
-    }
-    for (int step = 0; step < options.feather_rings; ++step) {
-      std::vector<ViewWeights> next(nv);
-      for (std::size_t v = 0; v < nv; ++v) {
-        std::map<int, double> sum;
-        auto add = [&](const ViewWeights& w) {
-          for (int i = 0; i < kMaxViewsPerVertex; ++i) {
-            if (w.view[static_cast<std::size_t>(i)] >= 0)
-              sum[w.view[static_cast<std::size_t>(i)]] += w.weight[static_cast<std::size_t>(i)];
-          }
-        };
-        add(vw[v]);
-        for (int n : ring[v]) add(vw[static_cast<std::size_t>(n)]);
-        next[v] = Strongest(sum);
-      }
-      vw.swap(next);
-    }
-  }
+  const std::vector<ViewWeights> vw = FeatherWeights(model, R.faces, options);
 
   // ---- Atlas layout.
   progress.Update(0.3, "packing the atlas");
