@@ -1,4 +1,5 @@
 // hullinspect-cli compare: change between two surveys of one hull.
+#include <cmath>
 #include <cstdio>
 
 #include "cli/args.h"
@@ -21,6 +22,11 @@ results folders ('hullinspect-cli run', their mapping/ is used). Writes
 DIR/model.ply (scalars change, change_sigma, change_significant),
 DIR/objects.csv and DIR/compare.json; DIR is replaced as a whole.
 
+The two adjustments may place the CAD model differently along the surface
+(a flat bottom leaves it free there), so B's map is first registered to A's
+by the objects the two have in common (a RANSAC over object pairs; at least
+3 needed, else none): compare.json's "registration" says how.
+
 options:
   --out DIR            output folder (required)
   --mesh PATH          the CAD mesh (default: the one A's mapping.json names)
@@ -28,6 +34,9 @@ options:
   --match-radius M     objects within M of each other are the same (default 0.3)
   --change M           grown / shrunk when the max height changes by M (default 0.03)
   --k K                significance factor (default 1.96)
+  --max-misplacement M the most one object may lie apart between the two maps
+                       before registration (default 5)
+  --no-register        compare in M as the two results have it
 )";
 
 std::string MappingFolder(const std::string& results) {
@@ -38,18 +47,20 @@ std::string MappingFolder(const std::string& results) {
 }  // namespace
 
 int RunCompare(const CommandArgs& argv) {
-  Args a(argv, {"help"});
+  Args a(argv, {"help", "no-register"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"out", "mesh", "mesh-scale", "match-radius", "change", "k"});
+  a.AllowOnly({"out", "mesh", "mesh-scale", "match-radius", "change", "k", "max-misplacement", "no-register"});
   if (a.positionals().size() != 2) throw UsageError("expected two results folders, A and B");
   if (!a.Has("out")) throw UsageError("--out DIR is required");
   SurveyCompareOptions o;
   o.match_radius = a.GetDouble("match-radius", o.match_radius);
   o.change_threshold = a.GetDouble("change", o.change_threshold);
   o.significance_k = a.GetDouble("k", o.significance_k);
+  o.max_misplacement = a.GetDouble("max-misplacement", o.max_misplacement);
+  o.register_surveys = !a.Has("no-register");
   o.Check();
   const MappingResultsOnDisk ra = ReadMappingResultsForCompare(MappingFolder(a.positionals()[0]));
   const MappingResultsOnDisk rb = ReadMappingResultsForCompare(MappingFolder(a.positionals()[1]));
@@ -60,6 +71,13 @@ int RunCompare(const CommandArgs& argv) {
   const TriangleMesh cad = LoadMesh(mesh, lo);
   const SurveyComparison c = CompareSurveys(cad, ra.model, ra.objects, rb.model, rb.objects, o);
   WriteSurveyComparison(c, a.Get("out"));
+  const SurveyRegistration& r = c.registration;
+  if (r.registered) {
+    std::printf("B registered to A by %d objects in common (%d without): %.2f deg, %.3f m, rms %.3f m\n", r.inliers,
+                r.identity_inliers, r.rotation * 180.0 / M_PI, r.translation, r.rms);
+  } else {
+    std::printf("B not registered to A (%d objects in common as they stand)\n", r.identity_inliers);
+  }
   std::printf("%zu of %zu vertices changed significantly\n", c.significant_vertices, c.model.num_vertices());
   std::printf("%-10s %-8s %-8s %9s %9s %9s\n", "change", "A", "B", "height A", "height B", "change");
   for (const ObjectChange& x : c.objects) {

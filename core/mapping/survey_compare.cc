@@ -45,6 +45,9 @@ void SurveyCompareOptions::Check() const {
     throw OptionError("change_threshold", "must be positive (m)");
   }
   if (!(std::isfinite(significance_k) && significance_k > 0)) throw OptionError("significance_k", "must be positive");
+  if (!(std::isfinite(max_misplacement) && max_misplacement > 0)) {
+    throw OptionError("max_misplacement", "must be positive (m)");
+  }
 }
 
 const char* ObjectChangeKindName(ObjectChangeKind k) {
@@ -98,6 +101,13 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   const PointIndex a_index(feet_a);
 
   SurveyComparison out;
+  if (o.register_surveys) {
+    SurveyRegistrationOptions ro;
+    ro.match_radius = o.match_radius;
+    ro.max_offset = o.max_misplacement;
+    out.registration = RegisterSurveys(objects_a, objects_b, ro);
+  }
+  const Pose& x_ab = out.registration.a_from_b;  // B's map placed on A's
   out.model = model_b;
   const std::size_t nb = model_b.num_vertices();
   std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
@@ -106,7 +116,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
       progress.ThrowIfCancelled();
       progress.Update(static_cast<double>(feet_a.size() + i) / total, "measuring the change on survey B's model");
     }
-    const Eigen::Vector3d foot = index.Closest(model_b.vertices[i]).point;
+    const Eigen::Vector3d foot = index.Closest(x_ab * model_b.vertices[i]).point;
     const auto nearest = a_index.NearestOne(foot);
     const std::size_t j = static_cast<std::size_t>(std::max(0, nearest.first));
     change[i] = dev_b[i] - dev_a[j];
@@ -129,7 +139,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   std::vector<Pair> pairs;
   for (std::size_t a = 0; a < objects_a.size(); ++a) {
     for (std::size_t b = 0; b < objects_b.size(); ++b) {
-      const double d = (objects_a[a].centroid_m - objects_b[b].centroid_m).norm();
+      const double d = (objects_a[a].centroid_m - x_ab * objects_b[b].centroid_m).norm();
       if (d <= o.match_radius) pairs.push_back({d, a, b});
     }
   }
@@ -203,6 +213,7 @@ MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir) {
     o.id = r.String("id");
     o.centroid_m = Vec3(r, "centroid");
     o.max_height = r.Number("max_height");
+    if (r.Has("normal")) o.normal_m = Vec3(r, "normal");  // what registration uses
     out.objects.push_back(std::move(o));
   }
   const std::string jpath = (d / "mapping.json").string();
@@ -285,6 +296,17 @@ void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_d
     root.Set("version", 1);
     root.Set("vertices", static_cast<std::int64_t>(c.model.num_vertices()));
     root.Set("significant_vertices", static_cast<std::int64_t>(c.significant_vertices));
+    const SurveyRegistration& r = c.registration;
+    Json reg = Json::Object();
+    reg.Set("registered", r.registered);
+    reg.Set("objects_in_common", r.inliers);
+    reg.Set("objects_in_common_unregistered", r.identity_inliers);
+    reg.Set("rms", r.rms);
+    reg.Set("rotation_deg", r.rotation * 180.0 / M_PI);
+    reg.Set("translation", r.translation);
+    const Vector6d x = r.a_from_b.ToVector();
+    reg.Set("a_from_b", Json::ArrayOf(std::vector<double>(x.data(), x.data() + 6)));
+    root.Set("registration", std::move(reg));
     root.Set("objects", std::move(list));
     WriteFileAtomic((fs::path(dir) / "compare.json").string(), root.Dump());
   });

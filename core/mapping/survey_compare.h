@@ -12,6 +12,7 @@
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
 #include "mapping/detected_objects.h"
+#include "mapping/survey_registration.h"
 
 namespace hull {
 
@@ -24,6 +25,11 @@ struct SurveyCompareOptions {
   double change_threshold = 0.03;
   // A vertex's change is significant when |change| > k sqrt(sigma_A^2 + sigma_B^2).
   double significance_k = 1.96;
+  // Register B's map to A's first (mapping/survey_registration.h): the two
+  // adjustments may place the CAD model differently along the surface, by up
+  // to max_misplacement (m) at an object.
+  bool register_surveys = true;
+  double max_misplacement = 5.0;
   // Throws OptionError naming the field.
   void Check() const;
 };
@@ -46,6 +52,9 @@ struct SurveyComparison {
   TriangleMesh model;
   std::vector<ObjectChange> objects;  // matched first (from the bow aft as B lists them), then new, then removed
   std::size_t significant_vertices = 0;
+  // How B's map was placed on A's before the comparison (identity when not
+  // registered). Vertices and centroids keep B's own coordinates.
+  SurveyRegistration registration;
 };
 
 // cad: the CAD mesh in M both results were mapped against; model_a/b: the

@@ -23,18 +23,34 @@ std::pair<int, double> NearestObject(const std::vector<DetectedObject>& a, const
   return best;
 }
 
+// An object's outward normal; objects without one (results written before
+// normals were kept) take the mean normal of their map, else +z.
+Eigen::Vector3d NormalOf(const DetectedObject& o, const Eigen::Vector3d& fallback) {
+  const double n = o.normal_m.norm();
+  return n > 1e-9 && std::isfinite(n) ? Eigen::Vector3d(o.normal_m / n) : fallback;
+}
+
+Eigen::Vector3d MeanNormal(const std::vector<DetectedObject>& objects) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const DetectedObject& o : objects) {
+    if (o.normal_m.allFinite()) sum += o.normal_m;
+  }
+  return sum.norm() > 1e-9 ? Eigen::Vector3d(sum.normalized()) : Eigen::Vector3d::UnitZ();
+}
+
 // The rigid motion taking B's centroids (and the points 1 m out along their
 // normals) onto A's, least squares (Umeyama, no scale).
 Pose FitMotion(const std::vector<DetectedObject>& a, const std::vector<DetectedObject>& b,
-               const std::vector<std::pair<int, int>>& pairs) {
+               const std::vector<std::pair<int, int>>& pairs, const Eigen::Vector3d& normal_a,
+               const Eigen::Vector3d& normal_b) {
   Eigen::Matrix3Xd src(3, 2 * pairs.size()), dst(3, 2 * pairs.size());
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const DetectedObject& oa = a[static_cast<std::size_t>(pairs[k].first)];
     const DetectedObject& ob = b[static_cast<std::size_t>(pairs[k].second)];
     src.col(static_cast<Eigen::Index>(2 * k)) = ob.centroid_m;
-    src.col(static_cast<Eigen::Index>(2 * k + 1)) = ob.centroid_m + ob.normal_m.normalized();
+    src.col(static_cast<Eigen::Index>(2 * k + 1)) = ob.centroid_m + NormalOf(ob, normal_b);
     dst.col(static_cast<Eigen::Index>(2 * k)) = oa.centroid_m;
-    dst.col(static_cast<Eigen::Index>(2 * k + 1)) = oa.centroid_m + oa.normal_m.normalized();
+    dst.col(static_cast<Eigen::Index>(2 * k + 1)) = oa.centroid_m + NormalOf(oa, normal_a);
   }
   return Pose::FromMatrix(Eigen::umeyama(src, dst, false));
 }
@@ -96,6 +112,7 @@ SurveyRegistration RegisterSurveys(const std::vector<DetectedObject>& a, const s
                                    const SurveyRegistrationOptions& o) {
   o.Check();
   SurveyRegistration out;
+  const Eigen::Vector3d normal_a = MeanNormal(a), normal_b = MeanNormal(b);
   const Score identity = Evaluate(a, b, Pose::Identity(), o.match_radius);
   out.identity_inliers = identity.inliers;
   out.inliers = identity.inliers;
@@ -126,7 +143,7 @@ SurveyRegistration RegisterSurveys(const std::vector<DetectedObject>& a, const s
     const Eigen::Vector3d& b2 = b[static_cast<std::size_t>(q.second)].centroid_m;
     const double da = (a1 - a2).norm();
     if (da < 2 * o.match_radius || std::abs(da - (b1 - b2).norm()) > o.match_radius) return;
-    const Pose x_ab = FitMotion(a, b, {p, q});
+    const Pose x_ab = FitMotion(a, b, {p, q}, normal_a, normal_b);
     if (Pose::AngleBetween(x_ab, Pose::Identity()) > o.max_rotation) return;
     const Score s = Evaluate(a, b, x_ab, o.match_radius);
     if (s.Better(best)) {
@@ -150,7 +167,7 @@ SurveyRegistration RegisterSurveys(const std::vector<DetectedObject>& a, const s
     Evaluate(a, b, x_ab, o.match_radius, &inl);
     inl = OneToOne(a, b, x_ab, inl);
     if (static_cast<int>(inl.size()) < o.min_inliers) break;
-    x_ab = FitMotion(a, b, inl);
+    x_ab = FitMotion(a, b, inl, normal_a, normal_b);
   }
   std::vector<std::pair<int, int>> inl;
   Evaluate(a, b, x_ab, o.match_radius, &inl);

@@ -102,6 +102,53 @@ TEST(SurveyCompare, ChangesPerVertexAndPerObject) {
   EXPECT_THROW(CompareSurveys(cad, ma, {}, mb, {}, bad), OptionError);
 }
 
+// The second survey's adjustment placed the model 0.4 m and 1.5 degrees
+// along the flat surface from the first's (the free directions of a flat
+// bottom): registered by the objects in common, nothing is new or removed
+// but what changed, and the height field is compared at the same places.
+TEST(SurveyCompare, RegistersTheSecondSurveyBeforeComparing) {
+  TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
+  for (Face& f : cad.faces) std::swap(f[1], f[2]);
+  cad.ComputeNormals();
+  const std::vector<Lump> a = {{{0.4, 0.4}, 0.10}, {{1.6, 0.5}, 0.12}, {{0.5, 1.6}, 0.08}, {{1.5, 1.5}, 0.09}};
+  std::vector<Lump> moved = a;
+  moved[1].h = 0.16;                                                           // grew by 4 cm
+  const Pose x_ba = Pose::FromXyzRpy(0.30, -0.25, 0, 0, 0, 1.5 * M_PI / 180);  // B's map of A's places
+  for (Lump& l : moved) l.c = (x_ba * Eigen::Vector3d(l.c.x(), l.c.y(), 0)).head<2>();
+  const TriangleMesh ma = Model(a, 0.004), mb = Model(moved, 0.004);
+  const std::vector<DetectedObject> oa = Objects(a, "a"), ob = Objects(moved, "b");
+  SurveyCompareOptions o;
+  const SurveyComparison c = CompareSurveys(cad, ma, oa, mb, ob, o);
+  ASSERT_TRUE(c.registration.registered);
+  EXPECT_EQ(c.registration.inliers, 4);
+  EXPECT_LE(c.registration.identity_inliers, 1);
+  EXPECT_LT(Pose::DistanceBetween(c.registration.a_from_b, x_ba.Inverse()), 0.01);
+  ASSERT_EQ(c.objects.size(), 4u);
+  for (const ObjectChange& x : c.objects) {
+    EXPECT_EQ(x.kind, x.id_b == "b2" ? ObjectChangeKind::kGrown : ObjectChangeKind::kUnchanged) << x.id_b;
+    EXPECT_EQ(x.id_a.substr(1), x.id_b.substr(1));
+  }
+  // Per vertex: where nothing changed the change is within the grid's
+  // sampling of the cones (5 cm spacing) -- without registration the
+  // displaced lumps read as +-10 cm.
+  const std::vector<double>& change = *c.model.FindScalar("change");
+  double worst_unchanged = 0;
+  for (std::size_t i = 0; i < change.size(); ++i) {
+    const Eigen::Vector3d p = c.registration.a_from_b * mb.vertices[i];
+    if ((p.head<2>() - a[1].c).norm() < 0.45) continue;                          // the grown lump
+    if (p.x() < 0.05 || p.y() < 0.05 || p.x() > 1.95 || p.y() > 1.95) continue;  // moved past the grid
+    worst_unchanged = std::max(worst_unchanged, std::abs(change[i]));
+  }
+  EXPECT_LT(worst_unchanged, 0.03);
+  o.register_surveys = false;
+  const SurveyComparison raw = CompareSurveys(cad, ma, oa, mb, ob, o);
+  EXPECT_FALSE(raw.registration.registered);
+  EXPECT_GE(raw.objects.size(), 7u);  // all new and removed
+  double worst_raw = 0;
+  for (double v : *raw.model.FindScalar("change")) worst_raw = std::max(worst_raw, std::abs(v));
+  EXPECT_GT(worst_raw, 0.07);
+}
+
 TEST(SurveyCompare, ReportsProgressAndStopsWhenCancelled) {
   TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
   for (Face& f : cad.faces) std::swap(f[1], f[2]);
