@@ -116,15 +116,7 @@ class ResultViewsBaselineTest : public QObject {
     scene.SetOptions(o);
     scene.show();
     QVERIFY(QTest::qWaitForWindowExposed(&scene));
-    // Close to the cylinder (2.0, 0.75) in M, from below.
-    const hull::Pose x_gM = PlacementPose(survey.bundle.get(), ModelPlacement::kTruth);
-    const Eigen::Vector3d centre = x_gM * Eigen::Vector3d(2.0, 0.75, 0.0);
-    CameraState c;
-    c.focal_point = {centre.x(), centre.y(), centre.z()};
-    c.position = {centre.x() + 0.8, centre.y() - 1.2, centre.z() + 2.6};
-    c.view_up = {1, 0, 0};
-    c.view_angle = 30;
-    scene.SetCamera(c);
+    LookAtTheCylinder(scene);
     QVERIFY(scene.Stats(SceneLayer::kHeatmap).visible && scene.Stats(SceneLayer::kDetectedObjects).visible);
     QVERIFY(scene.LegendVisible());
     Check(scene.Grab(), QStringLiteral("scene_heatmap"));

@@ -6,6 +6,7 @@
 #include "base/progress.h"
 #include "mapping/mapper.h"
 #include "synthetic_survey.h"
+#include "ui/session/survey_overlays.h"
 
 namespace hull::ui::testing {
 
@@ -106,6 +107,18 @@ std::shared_ptr<const MappingRun> SyntheticMapping() {
     return run;
   }();
   return mapping;
+}
+
+void LookAtTheCylinder(SceneView& scene) {
+  const auto& survey = MakeSyntheticSurvey();
+  const Pose x_gM = PlacementPose(survey.bundle.get(), ModelPlacement::kTruth);
+  const Eigen::Vector3d centre = x_gM * Eigen::Vector3d(2.0, 0.75, 0.0);
+  CameraState c;
+  c.focal_point = {centre.x(), centre.y(), centre.z()};
+  c.position = {centre.x() + 0.8, centre.y() - 1.2, centre.z() + 2.6};
+  c.view_up = {1, 0, 0};
+  c.view_angle = 30;
+  scene.SetCamera(c);
 }
 
 }  // namespace hull::ui::testing

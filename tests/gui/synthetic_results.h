@@ -8,6 +8,7 @@
 
 #include "ui/session/inspection_results.h"
 #include "ui/session/session.h"
+#include "ui/views/scene_view.h"
 
 namespace hull::ui::testing {
 
@@ -18,5 +19,9 @@ const Session::ModelRuns& SyntheticRuns();
 // Mapped from the truth with made-up landmark sigmas (2 to 5 mm): the fused
 // model has per-vertex "sigma" and "significant", the objects a height sigma.
 std::shared_ptr<const MappingRun> SyntheticMapping();
+
+// Points `scene`'s camera close at the synthetic survey's cylinder ((2.0,
+// 0.75) in M), from below: the view the result-view baselines share.
+void LookAtTheCylinder(SceneView& scene);
 
 }  // namespace hull::ui::testing

@@ -68,18 +68,6 @@ SceneOptions OnlyLayer(SceneLayer shown) {
   return o;
 }
 
-void LookAtTheCylinder(SceneView& scene) {
-  const auto& survey = MakeSyntheticSurvey();
-  const hull::Pose x_gM = PlacementPose(survey.bundle.get(), ModelPlacement::kTruth);
-  const Eigen::Vector3d centre = x_gM * Eigen::Vector3d(2.0, 0.75, 0.0);
-  CameraState c;
-  c.focal_point = {centre.x(), centre.y(), centre.z()};
-  c.position = {centre.x() + 0.8, centre.y() - 1.2, centre.z() + 2.6};
-  c.view_up = {1, 0, 0};
-  c.view_angle = 30;
-  scene.SetCamera(c);
-}
-
 // The synthetic mapping written as results folders: A as mapped, B with the
 // first object grown by 5 cm, the second removed and a new lump elsewhere.
 struct ComparePair {

@@ -25,6 +25,20 @@ constexpr double kDetectedMagenta[3] = {1.0, 0.25, 0.85};
 
 void Colour(vtkProperty* p, const double (&rgb)[3]) { p->SetColor(rgb[0], rgb[1], rgb[2]); }
 
+// 256 colours sampled from a transfer function over [0, 1]; NaN grey.
+vtkSmartPointer<vtkLookupTable> SampledLut(vtkColorTransferFunction* ctf) {
+  auto lut = vtkSmartPointer<vtkLookupTable>::New();
+  lut->SetNumberOfTableValues(256);
+  for (int i = 0; i < 256; ++i) {
+    double rgb[3];
+    ctf->GetColor(i / 255.0, rgb);
+    lut->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
+  }
+  lut->SetNanColor(0.45, 0.46, 0.48, 1.0);
+  lut->Build();
+  return lut;
+}
+
 }  // namespace
 
 void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
@@ -136,16 +150,7 @@ vtkSmartPointer<vtkLookupTable> MakeDivergingLut() {
   ctf->AddRGBPoint(0.0, 0.230, 0.299, 0.754);
   ctf->AddRGBPoint(0.5, 0.865, 0.865, 0.865);
   ctf->AddRGBPoint(1.0, 0.706, 0.016, 0.150);
-  auto lut = vtkSmartPointer<vtkLookupTable>::New();
-  lut->SetNumberOfTableValues(256);
-  for (int i = 0; i < 256; ++i) {
-    double rgb[3];
-    ctf->GetColor(i / 255.0, rgb);
-    lut->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
-  }
-  lut->SetNanColor(0.45, 0.46, 0.48, 1.0);
-  lut->Build();
-  return lut;
+  return SampledLut(ctf);
 }
 
 vtkSmartPointer<vtkLookupTable> MakeSequentialLut() {
@@ -156,16 +161,7 @@ vtkSmartPointer<vtkLookupTable> MakeSequentialLut() {
   vtkNew<vtkColorTransferFunction> ctf;
   ctf->SetColorSpaceToRGB();
   for (int i = 0; i < 9; ++i) ctf->AddRGBPoint(i / 8.0, stops[i][0], stops[i][1], stops[i][2]);
-  auto lut = vtkSmartPointer<vtkLookupTable>::New();
-  lut->SetNumberOfTableValues(256);
-  for (int i = 0; i < 256; ++i) {
-    double rgb[3];
-    ctf->GetColor(i / 255.0, rgb);
-    lut->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
-  }
-  lut->SetNanColor(0.45, 0.46, 0.48, 1.0);
-  lut->Build();
-  return lut;
+  return SampledLut(ctf);
 }
 
 vtkSmartPointer<vtkScalarBarActor> MakeLegend(vtkLookupTable* lut, const char* title, const char* label_format) {

@@ -27,19 +27,12 @@
 #include "geometry/mesh_io.h"
 #include "image/image_file.h"
 #include "mosaic/mosaic_io.h"
+#include "support/bench_clock.h"
 #include "survey/survey_import.h"
 
 namespace {
-double Seconds(std::chrono::steady_clock::time_point a) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-}
-// CPU time of the whole process (all threads): steadier than the wall clock
-// on a shared machine.
-double CpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+using hull::bench::CpuSeconds;
+using hull::bench::Seconds;
 // Orthographic render of the textured faces along the cameras' mean axis.
 // vertex_colours: shade with the per-vertex values (the PLY's colours) instead of the atlas.
 cv::Mat Snapshot(const hull::MosaicResult& r, double pixel, bool vertex_colours) {

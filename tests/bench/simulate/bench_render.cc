@@ -20,18 +20,11 @@
 
 #include "image/image_file.h"
 #include "simulate/survey_imaging.h"
+#include "support/bench_clock.h"
 
 namespace {
-double Seconds(std::chrono::steady_clock::time_point a) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - a).count();
-}
-// CPU time of the whole process (all threads): a figure that other jobs on a
-// shared machine disturb less than the wall clock.
-double CpuSeconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+using hull::bench::CpuSeconds;
+using hull::bench::Seconds;
 }  // namespace
 
 int main(int argc, char** argv) {

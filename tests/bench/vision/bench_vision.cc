@@ -9,6 +9,7 @@
 #include <ctime>
 #include <filesystem>
 
+#include "support/bench_clock.h"
 #include "support/test_files.h"
 #include "unit/vision/vision_scene.h"
 #include "vision/feature_detection.h"
@@ -18,17 +19,9 @@
 
 namespace {
 double Now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-// CPU time of this thread (s): comparable on a loaded machine.
-double ThreadCpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
-double ProcessCpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+// CPU time (s) of this thread and of the process: comparable on a loaded machine.
+const auto ThreadCpu = hull::bench::ThreadCpuSeconds;
+const auto ProcessCpu = hull::bench::CpuSeconds;
 }  // namespace
 
 int main(int argc, char** argv) {
