@@ -81,9 +81,10 @@ int RunCompare(const CommandArgs& argv) {
   std::printf("%zu of %zu vertices changed significantly\n", c.significant_vertices, c.model.num_vertices());
   std::printf("%-10s %-8s %-8s %9s %9s %9s\n", "change", "A", "B", "height A", "height B", "change");
   for (const ObjectChange& x : c.objects) {
-    std::printf("%-10s %-8s %-8s %9.3f %9.3f %+9.3f\n", ObjectChangeKindName(x.kind),
+    const char* note = x.from_height_field ? "  (from the other's height field)" : "";
+    std::printf("%-10s %-8s %-8s %9.3f %9.3f %+9.3f%s\n", ObjectChangeKindName(x.kind),
                 x.id_a.empty() ? "-" : x.id_a.c_str(), x.id_b.empty() ? "-" : x.id_b.c_str(), x.height_a, x.height_b,
-                x.change);
+                x.change, note);
   }
   return kExitOk;
 }

@@ -111,12 +111,14 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   out.model = model_b;
   const std::size_t nb = model_b.num_vertices();
   std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
+  std::vector<Eigen::Vector3d> feet_b(nb);
   for (std::size_t i = 0; i < nb; ++i) {
     if (i % kChunk == 0) {
       progress.ThrowIfCancelled();
       progress.Update(static_cast<double>(feet_a.size() + i) / total, "measuring the change on survey B's model");
     }
     const Eigen::Vector3d foot = index.Closest(x_ab * model_b.vertices[i]).point;
+    feet_b[i] = foot;
     const auto nearest = a_index.NearestOne(foot);
     const std::size_t j = static_cast<std::size_t>(std::max(0, nearest.first));
     change[i] = dev_b[i] - dev_a[j];
@@ -130,6 +132,25 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   out.model.SetScalar("change", change);
   out.model.SetScalar("change_sigma", sigma);
   out.model.SetScalar("change_significant", significant);
+  const PointIndex b_index(feet_b);
+  // The highest height of a model over an object's footprint (the disc of
+  // its area about p on A's placement, at most match_radius; a vertex no
+  // shape was fused into stands at its CAD height, 0); where the model has
+  // no vertex that close (a coarse stretch nothing was fused into), its
+  // nearest vertex's.
+  auto height_near = [&](const PointIndex& at, const std::vector<double>& dev, const Eigen::Vector3d& p, double area) {
+    const double r = std::clamp(std::sqrt(std::max(area, 0.0) / M_PI), 0.05, o.match_radius);
+    double h = -std::numeric_limits<double>::infinity();
+    for (const auto& hit : at.Within(p, r)) h = std::max(h, dev[static_cast<std::size_t>(hit.first)]);
+    if (std::isfinite(h)) return h;
+    const int nearest = at.NearestOne(p).first;
+    return nearest >= 0 ? dev[static_cast<std::size_t>(nearest)] : 0.0;
+  };
+  auto classify = [&](double delta) {
+    return delta >= o.change_threshold    ? ObjectChangeKind::kGrown
+           : delta <= -o.change_threshold ? ObjectChangeKind::kShrunk
+                                          : ObjectChangeKind::kUnchanged;
+  };
 
   // Objects: closest pairs first, within match_radius.
   struct Pair {
@@ -162,6 +183,15 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     c.centroid = ob.centroid_m;
     c.height_b = ob.max_height;
     if (match_of_b[b] < 0) {
+      const double h_a = height_near(a_index, dev_a, x_ab * ob.centroid_m, ob.area);
+      if (h_a >= o.change_threshold) {  // there in A too, below A's detection
+        c.from_height_field = true;
+        c.height_a = h_a;
+        c.change = c.height_b - c.height_a;
+        c.kind = classify(c.change);
+        out.objects.push_back(c);
+        continue;
+      }
       c.kind = ObjectChangeKind::kNew;
       c.change = c.height_b;
       added.push_back(c);
@@ -171,9 +201,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     c.id_a = oa.id;
     c.height_a = oa.max_height;
     c.change = c.height_b - c.height_a;
-    c.kind = c.change >= o.change_threshold    ? ObjectChangeKind::kGrown
-             : c.change <= -o.change_threshold ? ObjectChangeKind::kShrunk
-                                               : ObjectChangeKind::kUnchanged;
+    c.kind = classify(c.change);
     out.objects.push_back(c);
   }
   out.objects.insert(out.objects.end(), added.begin(), added.end());
@@ -185,6 +213,13 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     c.centroid = objects_a[a].centroid_m;
     c.height_a = objects_a[a].max_height;
     c.change = -c.height_a;
+    const double h_b = height_near(b_index, dev_b, objects_a[a].centroid_m, objects_a[a].area);
+    if (h_b >= o.change_threshold) {  // still there in B, below B's detection
+      c.from_height_field = true;
+      c.height_b = h_b;
+      c.change = c.height_b - c.height_a;
+      c.kind = classify(c.change);
+    }
     out.objects.push_back(c);
   }
   progress.Update(1.0, "compared: " + std::to_string(out.objects.size()) + " objects");
@@ -214,6 +249,7 @@ MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir) {
     o.centroid_m = Vec3(r, "centroid");
     o.max_height = r.Number("max_height");
     if (r.Has("normal")) o.normal_m = Vec3(r, "normal");  // what registration uses
+    if (r.Has("area")) o.area = r.Number("area");         // the footprint looked up in the other map
     out.objects.push_back(std::move(o));
   }
   const std::string jpath = (d / "mapping.json").string();
@@ -273,12 +309,14 @@ void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_d
     MeshSaveOptions ply;
     ply.binary = true;
     SaveMesh(c.model, (fs::path(dir) / "model.ply").string(), ply);
-    CsvWriter csv({"change", "id_a", "id_b", "x", "y", "z", "height_a", "height_b", "height_change"});
+    CsvWriter csv(
+        {"change", "id_a", "id_b", "x", "y", "z", "height_a", "height_b", "height_change", "from_height_field"});
     Json list = Json::Array();
     for (const ObjectChange& o : c.objects) {
       csv.Add(ObjectChangeKindName(o.kind)).Add(o.id_a).Add(o.id_b);
       for (int k = 0; k < 3; ++k) csv.Add(o.centroid[k]);
       csv.Add(o.height_a).Add(o.height_b).Add(o.change);
+      csv.Add(o.from_height_field ? 1 : 0);
       csv.EndRow();
       Json j = Json::Object();
       j.Set("change", ObjectChangeKindName(o.kind));
@@ -288,6 +326,7 @@ void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_d
       j.Set("height_a", o.height_a);
       j.Set("height_b", o.height_b);
       j.Set("height_change", o.change);
+      j.Set("from_height_field", o.from_height_field);
       list.Push(std::move(j));
     }
     WriteFileAtomic((fs::path(dir) / "objects.csv").string(), csv.text());

@@ -43,6 +43,14 @@ struct ObjectChange {
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // B's (A's when removed), in M
   double height_a = 0, height_b = 0;                   // max heights (m); 0 where absent
   double change = 0;                                   // height_b - height_a
+  // An object detected in one survey only is looked up in the other's
+  // height field (its highest vertex over the object's footprint, a disc of
+  // its area, at most match_radius): where
+  // the other survey saw a bump of at least change_threshold there, the
+  // object was there too, below that map's object detection, and is
+  // classed by the heights (height_a or height_b is then that field's
+  // height, id_a or id_b empty).
+  bool from_height_field = false;
 };
 
 struct SurveyComparison {
@@ -50,7 +58,10 @@ struct SurveyComparison {
   // the same CAD point), "change_sigma" (m; NaN without sigmas) and
   // "change_significant" (1 or 0).
   TriangleMesh model;
-  std::vector<ObjectChange> objects;  // matched first (from the bow aft as B lists them), then new, then removed
+  // Matched first (from the bow aft as B lists them; then B's objects found in
+  // A's height field), then new, then A's unmatched (removed, or found in B's
+  // height field).
+  std::vector<ObjectChange> objects;
   std::size_t significant_vertices = 0;
   // How B's map was placed on A's before the comparison (identity when not
   // registered). Vertices and centroids keep B's own coordinates.

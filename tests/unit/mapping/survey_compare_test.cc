@@ -149,6 +149,34 @@ TEST(SurveyCompare, RegistersTheSecondSurveyBeforeComparing) {
   EXPECT_GT(worst_raw, 0.07);
 }
 
+// An object one survey's detection missed is looked up in that survey's
+// height field: still there (unchanged, grown) rather than removed or new.
+TEST(SurveyCompare, LooksUpAnObjectMissedByOneMapInItsHeightField) {
+  TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
+  for (Face& f : cad.faces) std::swap(f[1], f[2]);
+  cad.ComputeNormals();
+  const std::vector<Lump> a = {{{0.5, 0.5}, 0.10}, {{1.5, 0.5}, 0.07}, {{1.0, 1.5}, 0.12}};
+  const std::vector<Lump> b = {{{0.5, 0.5}, 0.10}, {{1.5, 0.5}, 0.068}, {{1.0, 1.5}, 0.17}};
+  std::vector<DetectedObject> oa = Objects(a, "a"), ob = Objects(b, "b");
+  ob.erase(ob.begin() + 1);  // B's detection missed the 0.068 m lump
+  oa.erase(oa.begin() + 2);  // A's missed the 0.12 m one, which grew to 0.17 m
+  for (auto* list : {&oa, &ob}) {
+    for (DetectedObject& o : *list) o.area = 0.05;
+  }
+  const SurveyComparison c = CompareSurveys(cad, Model(a, 0.004), oa, Model(b, 0.004), ob, SurveyCompareOptions{});
+  ASSERT_EQ(c.objects.size(), 3u);
+  EXPECT_EQ(c.objects[0].kind, ObjectChangeKind::kUnchanged);  // a1 / b1, both detected
+  EXPECT_FALSE(c.objects[0].from_height_field);
+  EXPECT_EQ(c.objects[1].id_b, "b3");  // B's 0.17 m, A's field 0.12 m there
+  EXPECT_TRUE(c.objects[1].from_height_field);
+  EXPECT_EQ(c.objects[1].kind, ObjectChangeKind::kGrown);
+  EXPECT_NEAR(c.objects[1].change, 0.05, 0.005);
+  EXPECT_EQ(c.objects[2].id_a, "a2");  // still in B's field, not removed
+  EXPECT_TRUE(c.objects[2].from_height_field);
+  EXPECT_EQ(c.objects[2].kind, ObjectChangeKind::kUnchanged);
+  EXPECT_NEAR(c.objects[2].height_b, 0.068, 0.005);
+}
+
 TEST(SurveyCompare, ReportsProgressAndStopsWhenCancelled) {
   TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
   for (Face& f : cad.faces) std::swap(f[1], f[2]);
