@@ -36,7 +36,9 @@ void PlanMosaicFigures(const ReportInputs& in, std::vector<FigureRef>& figures) 
     f.caption =
         "The fused model coloured by the photomosaic's per-vertex colour: the hull's albedo estimated from the "
         "camera images (each face from its best view, gains normalised, seams feathered), seen " +
-        FromWords(v) + "; grey where no image saw the surface. Top: the whole hull; bottom: the surveyed stretch.";
+        FromWords(v) +
+        "; grey where no image saw the surface. The vertex colours are coarser than the mosaic's texture (mosaic.obj "
+        "with its atlas, in the application). Top: the whole hull; bottom: the surveyed stretch.";
     figures.push_back(f);
   }
 }
