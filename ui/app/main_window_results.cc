@@ -14,6 +14,7 @@
 
 #include "plugin/plugin_registry.h"
 #include "ui/app/main_window.h"
+#include "ui/controllers/document_controller.h"
 #include "ui/controllers/inspection_controller.h"
 #include "ui/controllers/result_exports.h"
 #include "ui/controllers/survey_compare_controller.h"
@@ -169,6 +170,29 @@ void MainWindow::ConnectResults() {
     compare_dock_->raise();
     UpdatePlacement();
   });
+  connect(session_, &Session::mosaicChanged, this, [this] {
+    const auto& mosaic = session_->mosaic();
+    if (mosaic && !scene_->Stats(SceneLayer::kPhotomosaic).present) {
+      // The first mosaic: shown instead of the surfaces it would cover.
+      SceneOptions o = layers_->options();
+      for (SceneLayer layer : {SceneLayer::kHull, SceneLayer::kHeatmap, SceneLayer::kSigmaHeatmap,
+                               SceneLayer::kSignificance, SceneLayer::kHeightChange}) {
+        o.visible[layer] = false;
+      }
+      o.visible[SceneLayer::kPhotomosaic] = true;
+      layers_->SetOptions(o);
+      scene_->SetOptions(o);
+    }
+    scene_->SetMosaic(mosaic);
+    if (mosaic && !session_->survey() && !session_->mesh()) scene_->ResetCamera();
+    if (mosaic) {
+      statusBar()->showMessage(QStringLiteral("Photomosaic: %1 triangles from %2")
+                                   .arg(mosaic->faces)
+                                   .arg(QDir::toNativeSeparators(QString::fromStdString(mosaic->dir))),
+                               8000);
+    }
+    UpdatePlacement();
+  });
   connect(compare_panel_, &SurveyComparePanel::compareRequested, this, &MainWindow::AskCompareSurveys);
   connect(compare_panel_, &SurveyComparePanel::objectSelected, this, [this](int index) {
     const auto& comparison = session_->comparison();
@@ -223,6 +247,14 @@ void MainWindow::CreateInspectionMenu() {
 void MainWindow::AddResultFileEntries(QMenu* file) {
   file->addAction(NewAction(QStringLiteral("openSonarSequence"), QStringLiteral("Open s&onar sequence…"), this,
                             [this] { AskOpenSonarSequence(); }));
+  QAction* mosaic = NewAction(QStringLiteral("openMosaic"), QStringLiteral("Open p&hotomosaic…"), this, [this] {
+    const QString folder = QFileDialog::getExistingDirectory(
+        this, QStringLiteral("Open the photomosaic of a results folder (or its mosaic folder)"));
+    if (!folder.isEmpty()) documents_->OpenMosaic(folder);
+  });
+  mosaic->setToolTip(
+      QStringLiteral("The remeshed model textured from the camera images, as 'hullinspect-cli mosaic' wrote it"));
+  file->addAction(mosaic);
 }
 
 void MainWindow::AddResultExportEntries(QMenu* exports) {

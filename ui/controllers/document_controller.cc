@@ -16,6 +16,7 @@ namespace hull::ui {
 
 const QString DocumentController::kOpenJob = QStringLiteral("open");
 const QString DocumentController::kExportJob = QStringLiteral("export");
+const QString DocumentController::kMosaicJob = QStringLiteral("open-mosaic");
 
 namespace {
 
@@ -239,6 +240,18 @@ bool DocumentController::SaveProject(const QString& path) {
   emit opened(path);
   emit message(QStringLiteral("Saved the project %1").arg(QFileInfo(path).fileName()));
   return true;
+}
+
+void DocumentController::OpenMosaic(const QString& folder) {
+  const std::string dir = Native(folder);
+  Session* session = session_;
+  jobs_->Run<std::shared_ptr<const MosaicLayer>>(
+      kMosaicJob, QStringLiteral("Opening the photomosaic of %1").arg(QFileInfo(folder).fileName()),
+      [dir](Progress& progress) {
+        progress.Update(0.0, "reading the photomosaic");
+        return std::shared_ptr<const MosaicLayer>(std::make_shared<MosaicLayer>(LoadMosaicLayer(dir)));
+      },
+      [session](std::shared_ptr<const MosaicLayer>& mosaic) { session->SetMosaic(mosaic); });
 }
 
 void DocumentController::ExportPlacedHull(const QString& path) {

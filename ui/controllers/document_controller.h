@@ -47,6 +47,7 @@ class DocumentController : public QObject {
  public:
   static const QString kOpenJob;
   static const QString kExportJob;
+  static const QString kMosaicJob;
 
   DocumentController(Session* session, JobRunner* jobs, QObject* parent = nullptr);
 
@@ -67,6 +68,9 @@ class DocumentController : public QObject {
   // Writes the hull transformed into g by the current placement (PLY, OBJ
   // or STL by the extension) in a job of kind "export".
   void ExportPlacedHull(const QString& path);
+  // Reads the photomosaic of a results folder (its mosaic/) or of a mosaic
+  // folder into the session, in a job of kind "open-mosaic".
+  void OpenMosaic(const QString& folder);
 
  signals:
   void failed(const QString& title, const QString& message);

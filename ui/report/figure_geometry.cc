@@ -77,6 +77,7 @@ std::vector<ProjectedTriangle> ProjectMesh(const TriangleMesh& mesh, const ViewB
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const Face& t = mesh.faces[f];
     ProjectedTriangle p;
+    p.face = static_cast<int>(f);
     Eigen::AlignedBox2d box;
     for (int k = 0; k < 3; ++k) {
       p.corner[k] = projected[t[k]];

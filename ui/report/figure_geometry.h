@@ -47,6 +47,7 @@ struct ProjectedTriangle {
   double facing = 0;    // cosine between the face normal and the direction to the viewer
   double value = 0;     // mean of the corners' values
   bool valued = false;  // false: no value to colour by (plain CAD)
+  int face = -1;        // of the mesh
 };
 
 // The mesh as seen in `view`, back to front (painter's algorithm). values:

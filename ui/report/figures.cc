@@ -12,6 +12,7 @@ std::unique_ptr<Figure> MakeFigure(const FigureRef& ref, const ReportInputs& inp
     case FigureKind::kSigmaHeatmap:
     case FigureKind::kSignificanceHeatmap:
     case FigureKind::kChangeHeatmap:
+    case FigureKind::kMosaic:
       return MakeHeatmapFigure(ref, inputs, options);
     case FigureKind::kCrossSection:
       return MakeCrossSectionFigure(ref, inputs, options);

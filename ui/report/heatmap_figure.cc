@@ -3,7 +3,8 @@
 // the surveyed stretch. The same figure draws the fused model's per-vertex
 // sigma (sequential colours), its significant deviation (|h| > k sigma; grey
 // elsewhere) and, with a comparison, the change in height since the earlier
-// survey on the comparison's model. The mesh is rasterised back to front into an image at
+// survey on the comparison's model, and the photomosaic's per-vertex colour
+// on the mosaic's model. The mesh is rasterised back to front into an image at
 // the target's resolution (a PDF would not want 10^5 vector triangles); the
 // frame, labels, scale bar and colour bar are drawn as vectors.
 #include <QFontMetricsF>
@@ -69,6 +70,24 @@ double Percentile(std::vector<double> v, double q) {
   return v[k];
 }
 
+// Per face of a photomosaic (mosaic.ply read by LoadMesh: the vertex scalars
+// red, green and blue, 0-255), the mean of its corners' colours.
+std::vector<QRgb> MosaicFaceColours(const TriangleMesh& mesh) {
+  const std::vector<double>* rgb[3] = {mesh.FindScalar("red"), mesh.FindScalar("green"), mesh.FindScalar("blue")};
+  if (!rgb[0] || !rgb[1] || !rgb[2]) throw std::invalid_argument("report: the mosaic has no red, green and blue");
+  std::vector<QRgb> out;
+  out.reserve(mesh.faces.size());
+  for (const Face& f : mesh.faces) {
+    int c[3];
+    for (int k = 0; k < 3; ++k) {
+      const double mean = ((*rgb[k])[f[0]] + (*rgb[k])[f[1]] + (*rgb[k])[f[2]]) / 3;
+      c[k] = std::clamp(static_cast<int>(std::lround(mean)), 0, 255);
+    }
+    out.push_back(qRgb(c[0], c[1], c[2]));
+  }
+  return out;
+}
+
 class HeatmapFigure final : public Figure {
  public:
   HeatmapFigure(const FigureRef& ref, const ReportInputs& in, const ReportOptions& options) : Figure(ref) {
@@ -80,9 +99,13 @@ class HeatmapFigure final : public Figure {
     if (kind_ == FigureKind::kChangeHeatmap && !in.comparison) {
       throw std::invalid_argument("report: the change heatmap needs a comparison");
     }
+    if (kind_ == FigureKind::kMosaic && !in.mosaic)
+      throw std::invalid_argument("report: the mosaic figure needs a mosaic");
     const TriangleMesh& mesh = kind_ == FigureKind::kChangeHeatmap ? in.comparison->comparison.model
+                               : kind_ == FigureKind::kMosaic      ? *in.mosaic
                                : mapped_                           ? in.mapping->model
                                                                    : *in.cad;
+    if (kind_ == FigureKind::kMosaic) face_colours_ = MosaicFaceColours(mesh);
     const std::vector<double>* dev = mapped_ ? mesh.FindScalar("deviation") : nullptr;
     const std::vector<double>* fusions = mapped_ ? mesh.FindScalar("fusions") : nullptr;
     // What the colours show, and which faces have a value (the others grey).
@@ -225,6 +248,14 @@ class HeatmapFigure final : public Figure {
       case FigureKind::kChangeHeatmap:
         DrawColourBar(p, bar, range_, QStringLiteral("change in height since survey A (m)"));
         break;
+      case FigureKind::kMosaic:
+        p.save();
+        p.setFont(FigureFont(10));
+        p.setPen(QColor(0x30, 0x30, 0x30));
+        p.drawText(bar.adjusted(-100, -4, 0, 8), Qt::AlignRight | Qt::AlignVCenter,
+                   QStringLiteral("colour: estimated albedo (the mosaic's mosaic.ply)"));
+        p.restore();
+        break;
       case FigureKind::kSignificanceHeatmap:
         DrawColourBar(p, bar, range_, QStringLiteral("deviation (m)"));
         DrawLegendRow(
@@ -252,6 +283,8 @@ class HeatmapFigure final : public Figure {
         return QStringLiteral("Surveyed stretch: significant deviation (|h| > %1 σ)").arg(significance_k_, 0, 'g', 3);
       case FigureKind::kChangeHeatmap:
         return QStringLiteral("Surveyed stretch: change in height, survey B minus survey A");
+      case FigureKind::kMosaic:
+        return QStringLiteral("Surveyed stretch: photomosaic");
       default:
         return mapped_ ? QStringLiteral("Surveyed stretch: fused model")
                        : QStringLiteral("Surveyed stretch: landmarks over the CAD model");
@@ -277,7 +310,8 @@ class HeatmapFigure final : public Figure {
           poly[k] = QPointF((t.corner[k].x() - lo.x()) * sx, h - (t.corner[k].y() - lo.y()) * sy);
         }
         const double shade = 0.62 + 0.38 * std::abs(t.facing);
-        const QColor base = !t.valued                            ? QColor(0xb4, 0xb4, 0xb4)
+        const QColor base = kind_ == FigureKind::kMosaic         ? QColor(face_colours_[t.face])
+                            : !t.valued                          ? QColor(0xb4, 0xb4, 0xb4)
                             : kind_ == FigureKind::kSigmaHeatmap ? SequentialColour(t.value / range_)
                                                                  : DivergingColour(t.value / range_);
         const QColor c = QColor::fromRgbF(base.redF() * shade, base.greenF() * shade, base.blueF() * shade);
@@ -396,6 +430,7 @@ class HeatmapFigure final : public Figure {
   ViewBasis view_;
   FigureKind kind_ = FigureKind::kHeatmap;
   std::vector<double> values_, mask_;  // significance: the masked deviation and its mask
+  std::vector<QRgb> face_colours_;     // mosaic: per face, the mean of its corners' colours
   double significance_k_ = 1.96;
   bool mapped_ = false;
   double range_ = 0.1;

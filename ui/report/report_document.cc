@@ -56,8 +56,8 @@ void CheckInputs(const ReportInputs& in) {
 }
 
 std::vector<std::string> SectionIds() {
-  return {"summary", "method", "deviation", "uncertainty", "cross-section", "objects",
-          "zones",   "change", "solver",    "evaluation",  "not-inspected"};
+  return {"summary", "method", "deviation", "uncertainty", "cross-section", "photomosaic",
+          "objects", "zones",  "change",    "solver",      "evaluation",    "not-inspected"};
 }
 
 const Section* ReportDocument::Find(const std::string& id) const {
@@ -107,6 +107,7 @@ std::vector<FigureRef> PlanFigures(const ReportInputs& in, const ReportOptions& 
     out.push_back(f);
   }
   PlanTrustFigures(in, options, out);
+  PlanMosaicFigures(in, out);
   {
     FigureRef f;
     f.id = "cross-section";
@@ -339,6 +340,7 @@ ReportDocument BuildReportDocument(const ReportInputs& in, const ReportOptions& 
   d.sections.push_back(DeviationSection(in, options, figures));
   d.sections.push_back(UncertaintySection(in, options, figures));
   d.sections.push_back(CrossSectionSection(in, hull, options, figures));
+  d.sections.push_back(MosaicSection(in, figures));
   d.sections.push_back(ObjectsSection(in));
   d.sections.push_back(ZonesSection(in));
   d.sections.push_back(ChangeSection(in, figures));

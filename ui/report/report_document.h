@@ -17,6 +17,7 @@ enum class FigureKind {
   kSigmaHeatmap,         // the fused model's per-vertex sigma from one view
   kSignificanceHeatmap,  // its deviation where |h| > k sigma, grey elsewhere, from one view
   kChangeHeatmap,        // the change in height since an earlier survey, from one view
+  kMosaic,               // the photomosaic's per-vertex colour (estimated albedo), from one view
   kCrossSection,         // the slab across the hull, every model side by side (Fig. 14)
   kConvergence,          // cost and fraction of lambda = 1 per iteration (Fig. 16)
   kDvlResiduals,         // DVL range residual histograms before and after (Fig. 18)

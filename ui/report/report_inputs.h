@@ -32,6 +32,11 @@ struct ReportInputs {
   // Optional: the change since an earlier survey of the hull (this survey
   // is B), for the "Change between surveys" section.
   std::shared_ptr<const SurveyComparisonRun> comparison;
+  // Optional: the 3-D photomosaic of the fused model (mosaic.ply of
+  // 'hullinspect-cli mosaic', in M, with the vertex scalars red, green and
+  // blue, 0-255: the estimated albedo), for the "Photomosaic" section.
+  std::shared_ptr<const TriangleMesh> mosaic;
+  std::string mosaic_path;  // shown in the section ("" : not shown)
 };
 
 // Throws std::invalid_argument naming the first required member missing.

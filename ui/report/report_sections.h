@@ -24,4 +24,10 @@ void PlanTrustFigures(const ReportInputs& in, const ReportOptions& options, std:
 Section UncertaintySection(const ReportInputs& in, const ReportOptions& options, const std::vector<FigureRef>& figures);
 Section ChangeSection(const ReportInputs& in, const std::vector<FigureRef>& figures);
 
+// The photomosaic (with a mosaic in the inputs): PlanMosaicFigures appends a
+// mosaic figure for every heatmap view already planned; MosaicSection shows
+// them, or says how to make a mosaic.
+void PlanMosaicFigures(const ReportInputs& in, std::vector<FigureRef>& figures);
+Section MosaicSection(const ReportInputs& in, const std::vector<FigureRef>& figures);
+
 }  // namespace hull::report

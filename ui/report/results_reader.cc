@@ -211,6 +211,19 @@ ReportInputs ReadReportInputs(const std::string& results_dir) {
   if (fs::is_regular_file(mapping / "mapping.json")) {
     r.mapping = std::make_shared<const MappingResult>(ReadMapping(mapping, in.mesh, result->adjustment));
   }
+  const fs::path mosaic = fs::path(results_dir) / "mosaic" / "mosaic.ply";
+  if (fs::is_regular_file(mosaic)) {
+    MeshLoadOptions o;
+    o.weld = false;  // the colours stay with their vertices
+    o.orient_outward = false;
+    auto mesh = std::make_shared<TriangleMesh>(LoadMesh(mosaic.string(), o));
+    for (const char* c : {"red", "green", "blue"}) {
+      if (!mesh->FindScalar(c))
+        throw InputError({mosaic.string(), 0, 0, c}, "a photomosaic needs per-vertex " + std::string(c));
+    }
+    r.mosaic = std::move(mesh);
+    r.mosaic_path = fs::absolute(mosaic).string();
+  }
   r.bundle_path = in.bundle_path;
   r.mesh_path = in.mesh_path;
   r.results_path = fs::absolute(results_dir).string();

@@ -19,7 +19,8 @@ const std::vector<SceneLayer>& AllSceneLayers() {
                                                  SceneLayer::kDetectedObjects,
                                                  SceneLayer::kSigmaHeatmap,
                                                  SceneLayer::kSignificance,
-                                                 SceneLayer::kHeightChange};
+                                                 SceneLayer::kHeightChange,
+                                                 SceneLayer::kPhotomosaic};
   return layers;
 }
 
@@ -59,6 +60,8 @@ QString LayerKey(SceneLayer layer) {
       return QStringLiteral("significance");
     case SceneLayer::kHeightChange:
       return QStringLiteral("height_change");
+    case SceneLayer::kPhotomosaic:
+      return QStringLiteral("photomosaic");
   }
   return {};
 }
@@ -99,6 +102,8 @@ QString LayerLabel(SceneLayer layer) {
       return QStringLiteral("Remeshed model (significant deviation)");
     case SceneLayer::kHeightChange:
       return QStringLiteral("Change between surveys (height)");
+    case SceneLayer::kPhotomosaic:
+      return QStringLiteral("Photomosaic (textured)");
   }
   return {};
 }

@@ -32,6 +32,8 @@ enum class SceneLayer {
   kSignificance,     // the fused model's deviation where |h| > k sigma, grey elsewhere
   // A comparison of two surveys (present once one ran):
   kHeightChange,  // survey B's model coloured by the change in height since survey A
+  // A photomosaic opened from a results folder (present once one is open):
+  kPhotomosaic,  // the remeshed model textured with the mosaic's atlas
 };
 
 const std::vector<SceneLayer>& AllSceneLayers();

@@ -106,6 +106,12 @@ void Session::SetComparison(std::shared_ptr<const SurveyComparisonRun> compariso
   emit comparisonChanged();
 }
 
+void Session::SetMosaic(std::shared_ptr<const MosaicLayer> mosaic) {
+  if (mosaic == mosaic_) return;
+  mosaic_ = std::move(mosaic);
+  emit mosaicChanged();
+}
+
 void Session::ClearResults() {
   SetMapping(nullptr);
   const bool had_runs = !model_runs_.empty();

@@ -19,6 +19,7 @@
 #include "registration/model_alignment.h"
 #include "survey/survey.h"
 #include "ui/session/inspection_results.h"
+#include "ui/session/mosaic_layer.h"
 #include "ui/session/survey_overlays.h"
 #include "vision/front_end.h"
 
@@ -78,6 +79,10 @@ class Session : public QObject {
   // the survey open: opening another survey keeps it.
   const std::shared_ptr<const SurveyComparisonRun>& comparison() const { return comparison_; }
   void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
+  // The photomosaic on screen (nullptr: none), opened from a results or
+  // mosaic folder. Independent of the survey open, like the comparison.
+  const std::shared_ptr<const MosaicLayer>& mosaic() const { return mosaic_; }
+  void SetMosaic(std::shared_ptr<const MosaicLayer> mosaic);
 
   // What the visual front end found in the survey's images (nullptr: the
   // features came with the bundle, or none extracted yet), and whether the
@@ -107,6 +112,7 @@ class Session : public QObject {
   void mappingChanged();
   void featuresChanged();
   void comparisonChanged();
+  void mosaicChanged();
 
  private:
   std::optional<LoadedMesh> mesh_;
@@ -119,6 +125,7 @@ class Session : public QObject {
   std::shared_ptr<const MappingRun> mapping_;
   std::shared_ptr<const FrontEndResult> front_end_;
   std::shared_ptr<const SurveyComparisonRun> comparison_;
+  std::shared_ptr<const MosaicLayer> mosaic_;
 };
 
 }  // namespace hull::ui

@@ -141,6 +141,18 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
       p->SetLineWidth(3.0);
       p->LightingOff();
       break;
+    case SceneLayer::kPhotomosaic:
+      // The atlas holds the hull's albedo: mostly ambient, so that the
+      // texture keeps its colours, with some diffuse light for the shape.
+      Colour(p, kShapeWhite);
+      p->SetInterpolationToGouraud();
+      p->SetAmbient(0.6);
+      p->SetDiffuse(0.45);
+      p->SetSpecular(0.0);
+      actor->PickableOff();
+      // The same surface as the heatmaps: drawn in front of them all.
+      MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(0.5, 1.0);
+      break;
   }
 }
 

@@ -3,12 +3,17 @@
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
 #include <vtkIntArray.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkOBJReader.h>
+#include <vtkPNGReader.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkPolyDataNormals.h>
+#include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 
 namespace hull::ui {
@@ -43,6 +48,38 @@ vtkSmartPointer<vtkPolyData> MeshPolyData(const TriangleMesh& mesh) {
   }
   poly->SetPolys(triangles);
   return poly;
+}
+
+vtkSmartPointer<vtkPolyData> TexturedObjPolyData(const std::string& obj_path) {
+  vtkNew<vtkOBJReader> reader;
+  reader->SetFileName(obj_path.c_str());
+  reader->Update();
+  vtkPolyData* read = reader->GetOutput();
+  if (!read || read->GetNumberOfPoints() == 0 || !read->GetPointData()->GetTCoords()) {
+    return vtkSmartPointer<vtkPolyData>::New();
+  }
+  // The OBJ has no normals: smooth ones (not split at edges, so that a
+  // vertex shared by two charts is lit alike on both).
+  vtkNew<vtkPolyDataNormals> normals;
+  normals->SetInputData(read);
+  normals->SplittingOff();
+  normals->ConsistencyOff();
+  normals->Update();
+  vtkSmartPointer<vtkPolyData> out = vtkSmartPointer<vtkPolyData>::New();
+  out->ShallowCopy(normals->GetOutput());
+  return out;
+}
+
+vtkSmartPointer<vtkTexture> AtlasTexture(const std::string& png_path) {
+  vtkNew<vtkPNGReader> reader;
+  reader->SetFileName(png_path.c_str());
+  reader->Update();
+  auto texture = vtkSmartPointer<vtkTexture>::New();
+  texture->SetInputData(reader->GetOutput());
+  texture->InterpolateOn();
+  texture->RepeatOff();
+  texture->EdgeClampOn();
+  return texture;
 }
 
 vtkSmartPointer<vtkPolyData> PolylinePolyData(const std::vector<Eigen::Vector3d>& points) {

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <string>
 #include <vector>
 
 #include "geometry/pose.h"
@@ -15,11 +16,18 @@
 
 class vtkMatrix4x4;
 class vtkPolyData;
+class vtkTexture;
 
 namespace hull::ui {
 
 // Triangles, in the mesh's own frame (no normals: flat shading).
 vtkSmartPointer<vtkPolyData> MeshPolyData(const TriangleMesh& mesh);
+// A textured OBJ (the photomosaic's mosaic.obj) with its texture
+// coordinates (vtkOBJReader) and smooth point normals; empty when the file
+// cannot be read or has no texture coordinates.
+vtkSmartPointer<vtkPolyData> TexturedObjPolyData(const std::string& obj_path);
+// A PNG as a texture, interpolated (the photomosaic's atlas).
+vtkSmartPointer<vtkTexture> AtlasTexture(const std::string& png_path);
 // One polyline through the points, in order.
 vtkSmartPointer<vtkPolyData> PolylinePolyData(const std::vector<Eigen::Vector3d>& points);
 // One vertex cell per point.

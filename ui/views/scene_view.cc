@@ -80,6 +80,11 @@ void SceneView::SetComparison(std::shared_ptr<const SurveyComparisonRun> compari
   ScheduleRender();
 }
 
+void SceneView::SetMosaic(std::shared_ptr<const MosaicLayer> mosaic) {
+  impl_->SetMosaic(std::move(mosaic));
+  ScheduleRender();
+}
+
 void SceneView::SetSlab(const std::optional<SlabBox>& slab) {
   impl_->SetSlab(slab);
   ScheduleRender();

@@ -23,6 +23,7 @@
 #include "ui/models/cross_section.h"
 #include "ui/models/pick_details.h"
 #include "ui/session/inspection_results.h"
+#include "ui/session/mosaic_layer.h"
 #include "ui/session/scene_options.h"
 #include "ui/session/survey_overlays.h"
 #include "ui/views/render_coalescer.h"
@@ -61,6 +62,9 @@ class SceneView : public QWidget {
   std::size_t SignificantVertices() const;  // at the current k, of the mapping on screen
   // A comparison of two surveys, drawn as the height-change layer (nullptr removes it).
   void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
+  // The photomosaic layer: mosaic.obj textured with its atlas, placed by the
+  // layer's x_gM (nullptr removes it).
+  void SetMosaic(std::shared_ptr<const MosaicLayer> mosaic);
   // The cross-section slab (nullopt removes it).
   void SetSlab(const std::optional<SlabBox>& slab);
   void SetOptions(const SceneOptions& options);

@@ -16,6 +16,7 @@
 #include <vtkRenderer.h>
 #include <vtkScalarBarActor.h>
 #include <vtkTextProperty.h>
+#include <vtkTexture.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
@@ -196,6 +197,20 @@ void SceneViewImpl::SetComparison(std::shared_ptr<const SurveyComparisonRun> com
   UpdateVisibility();
 }
 
+void SceneViewImpl::SetMosaic(std::shared_ptr<const MosaicLayer> mosaic) {
+  mosaic_ = std::move(mosaic);
+  vtkActor* actor = actors_[SceneLayer::kPhotomosaic];
+  if (mosaic_) {
+    SetData(actor, TexturedObjPolyData(mosaic_->obj));
+    actor->SetTexture(AtlasTexture(mosaic_->atlas));
+    actor->SetUserMatrix(PoseMatrix(mosaic_->x_gM));
+  } else {
+    SetData(actor, vtkSmartPointer<vtkPolyData>::New());
+    actor->SetTexture(nullptr);
+  }
+  UpdateVisibility();
+}
+
 void SceneViewImpl::SetSlab(const std::optional<SlabBox>& slab) {
   SetData(actors_[SceneLayer::kSlab], slab ? SlabPolyData(*slab) : vtkSmartPointer<vtkPolyData>::New());
   UpdateVisibility();
@@ -370,12 +385,19 @@ void SceneViewImpl::UpdateFrusta() {
 
 void SceneViewImpl::ResetCamera() {
   Eigen::AlignedBox3d box;
+  Pose placed = x_gM_;  // the hull's axes come from it
   if (overlays_ && !overlays_->bounds.isEmpty()) {
     box = overlays_->bounds;
   } else if (mesh_ && !mesh_->empty()) {
     for (const auto& v : mesh_->vertices) box.extend(x_gM_ * v);
   } else if (comparison_ && !comparison_->comparison.model.empty()) {
     for (const auto& v : comparison_->comparison.model.vertices) box.extend(x_gM_ * v);
+  } else if (mosaic_ && HasLayerData(SceneLayer::kPhotomosaic)) {
+    double b[6];
+    actors_[SceneLayer::kPhotomosaic]->GetBounds(b);  // placed by the mosaic's x_gM
+    box.extend(Eigen::Vector3d(b[0], b[2], b[4]));
+    box.extend(Eigen::Vector3d(b[1], b[3], b[5]));
+    placed = mosaic_->x_gM;
   } else {
     box.extend(Eigen::Vector3d(-1, -1, -1));
     box.extend(Eigen::Vector3d(1, 1, 1));
@@ -383,11 +405,11 @@ void SceneViewImpl::ResetCamera() {
   // The hull's axes in g. Seen from below (g is z down, so "below" is +z),
   // bow to the right and starboard up on the screen, tilted a little so
   // the view has depth.
-  Eigen::Vector3d forward = x_gM_.Rotate(Eigen::Vector3d::UnitX());
-  Eigen::Vector3d up = x_gM_.Rotate(Eigen::Vector3d::UnitZ());
+  Eigen::Vector3d forward = placed.Rotate(Eigen::Vector3d::UnitX());
+  Eigen::Vector3d up = placed.Rotate(Eigen::Vector3d::UnitZ());
   if (bundle_ && bundle_->manifest.model_axes) {
-    forward = x_gM_.Rotate(bundle_->manifest.model_axes->forward.normalized());
-    up = x_gM_.Rotate(bundle_->manifest.model_axes->up.normalized());
+    forward = placed.Rotate(bundle_->manifest.model_axes->forward.normalized());
+    up = placed.Rotate(bundle_->manifest.model_axes->up.normalized());
   }
   const Eigen::Vector3d starboard = forward.cross(up).normalized();
   const double tilt = 0.35;  // rad
@@ -459,6 +481,7 @@ void SceneViewImpl::WarmUp() {
     vtkSmartPointer<vtkPolyData> stand_in;
     switch (layer) {
       case SceneLayer::kHull:
+      case SceneLayer::kPhotomosaic:
         stand_in = MeshPolyData(tri);
         break;
       case SceneLayer::kHeatmap:

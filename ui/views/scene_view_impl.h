@@ -17,6 +17,7 @@
 #include "ui/models/cross_section.h"
 #include "ui/models/pick_details.h"
 #include "ui/session/inspection_results.h"
+#include "ui/session/mosaic_layer.h"
 #include "ui/session/scene_options.h"
 #include "ui/session/survey_overlays.h"
 
@@ -52,6 +53,9 @@ class SceneViewImpl {
   // A comparison of two surveys: survey B's model (in M, placed by x_gM)
   // coloured by the change in height (nullptr removes it).
   void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
+  // The photomosaic: mosaic.obj (with its texture coordinates) textured with
+  // the atlas, placed by the layer's x_gM (nullptr removes it).
+  void SetMosaic(std::shared_ptr<const MosaicLayer> mosaic);
   void SetOptions(const SceneOptions& options);
   const SceneOptions& options() const { return options_; }
 
@@ -113,6 +117,7 @@ class SceneViewImpl {
   std::shared_ptr<const AdjustedOverlays> adjusted_;
   std::shared_ptr<const MappingRun> mapping_;
   std::shared_ptr<const SurveyComparisonRun> comparison_;
+  std::shared_ptr<const MosaicLayer> mosaic_;
   double significance_k_ = 1.96;
   std::size_t significant_vertices_ = 0;
   double max_sigma_ = 0, max_change_ = 0;
