@@ -147,7 +147,7 @@ class ImagesViewTest : public QObject {
     auto* threshold = win.Real("fe_ransac_threshold");
     QVERIFY(threshold);
     threshold->setValue(0.4);
-    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->frontEnd() != first && !win.w.jobs()->IsBusy(), 180000);
+    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->frontEnd() != first && !win.w.jobs()->IsBusy(), 720000);
     const auto second = win.w.session()->frontEnd();
     QCOMPARE(FrontEndOptionsFrom(win.w.parameterPanel()->values()).temporal.ransac_threshold, 0.4);
     QVERIFY(win.w.imagesView()->overlay().temporal_inliers < inliers);
@@ -188,7 +188,7 @@ class ImagesViewTest : public QObject {
     // On request, with the parameters in force, it runs to the end.
     QVERIFY(win.w.action(QStringLiteral("extractFeatures"))->isEnabled());
     win.w.action(QStringLiteral("extractFeatures"))->trigger();
-    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->frontEnd() != first && !win.w.jobs()->IsBusy(), 180000);
+    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->frontEnd() != first && !win.w.jobs()->IsBusy(), 720000);
     QCOMPARE(win.w.session()->frontEnd()->keyframes.size(), first->keyframes.size());
   }
 
@@ -199,7 +199,8 @@ class ImagesViewTest : public QObject {
     // Run as soon as the survey is open, while the features are extracted.
     QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->survey().has_value() && win.w.session()->mesh().has_value(), 60000);
     win.w.action(QStringLiteral("runInspection"))->trigger();
-    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->adjustment() && !win.w.jobs()->IsBusy(), 300000);
+    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->adjustment() && !win.w.jobs()->IsBusy(),
+                             1200000);  // a whole adjustment: 60-370 s, by the load
     QVERIFY2(win.errors.isEmpty(), qPrintable(win.errors.join('\n')));
     QVERIFY(win.w.session()->frontEnd());
     ImagesView* view = win.w.imagesView();
