@@ -5,21 +5,6 @@
 #include "ui/report/report_sections.h"
 
 namespace hull::report {
-namespace {
-
-std::string FromWords(HullView v) {
-  switch (v) {
-    case HullView::kBottom:
-      return "from below";
-    case HullView::kPort:
-      return "from the port side";
-    case HullView::kStarboard:
-      return "from the starboard side";
-  }
-  return "";
-}
-
-}  // namespace
 
 void PlanMosaicFigures(const ReportInputs& in, std::vector<FigureRef>& figures) {
   if (!in.mosaic || !in.mapping) return;
@@ -32,11 +17,11 @@ void PlanMosaicFigures(const ReportInputs& in, std::vector<FigureRef>& figures) 
     f.id = std::string("mosaic-") + HullViewName(v);
     f.kind = FigureKind::kMosaic;
     f.view = v;
-    f.title = "Photomosaic, " + FromWords(v);
+    f.title = "Photomosaic, " + ViewWords(v);
     f.caption =
         "The fused model coloured by the photomosaic's per-vertex colour: the hull's albedo estimated from the "
         "camera images (each face from its best view, gains normalised, seams feathered), seen " +
-        FromWords(v) +
+        ViewWords(v) +
         "; grey where no image saw the surface. The vertex colours are coarser than the mosaic's texture (mosaic.obj "
         "with its atlas, in the application). Top: the whole hull; bottom: the surveyed stretch.";
     figures.push_back(f);

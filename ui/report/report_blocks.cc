@@ -135,4 +135,16 @@ void ToneByRating(Table& t, int column) {
   t.tone_column = column;
 }
 
+std::string ViewWords(HullView v, bool with_orientation) {
+  switch (v) {
+    case HullView::kBottom:
+      return with_orientation ? "from below (bow to the right, starboard up)" : "from below";
+    case HullView::kPort:
+      return with_orientation ? "from the port side (bow to the left)" : "from the port side";
+    case HullView::kStarboard:
+      return with_orientation ? "from the starboard side (bow to the right)" : "from the starboard side";
+  }
+  return "";
+}
+
 }  // namespace hull::report

@@ -19,6 +19,9 @@ std::string Rounded(double v);                         // Count of the nearest i
 std::string Duration(double seconds);                  // "12.3 s", "4 min 05 s", "2 h 10 min"
 std::string Quantile(std::vector<double> v, double q, int digits);
 std::string Ranges(std::vector<int> v);  // "0–7, 11, 13–19"
+// Where a hull figure is seen from: "from below", "from the port side", ...;
+// with_orientation adds which way the bow points ("... (bow to the right)").
+std::string ViewWords(HullView v, bool with_orientation = false);
 
 Block Paragraph(std::string text);
 Block Note(std::string text);

@@ -35,18 +35,6 @@ std::array<double, kZoneSides> LandmarksBySide(const ReportInputs& in, const Hul
   return a;
 }
 
-std::string ViewPhrase(HullView v) {
-  switch (v) {
-    case HullView::kBottom:
-      return "from below (bow to the right, starboard up)";
-    case HullView::kPort:
-      return "from the port side (bow to the left)";
-    case HullView::kStarboard:
-      return "from the starboard side (bow to the right)";
-  }
-  return "";
-}
-
 }  // namespace
 
 void CheckInputs(const ReportInputs& in) {
@@ -90,19 +78,19 @@ std::vector<FigureRef> PlanFigures(const ReportInputs& in, const ReportOptions& 
     f.kind = FigureKind::kHeatmap;
     f.view = views[s];
     if (in.mapping) {
-      f.title = "Deviation of the fused model, " + ViewPhrase(views[s]);
+      f.title = "Deviation of the fused model, " + ViewWords(views[s], true);
       f.caption =
           "The fused, locally remeshed model coloured by its signed deviation from the CAD surface "
           "(red: standing off the hull, blue: below it), seen " +
-          ViewPhrase(views[s]) +
+          ViewWords(views[s], true) +
           ". Top: the whole hull; the box marks the detail below. Bottom: the surveyed stretch, detected "
           "objects labelled; the dashed line encloses the adjusted features on this side of the hull.";
     } else {
-      f.title = "Landmark deviation over the CAD model, " + ViewPhrase(views[s]);
+      f.title = "Landmark deviation over the CAD model, " + ViewWords(views[s], true);
       f.caption =
           "Mapping has not run: the adjusted landmarks, coloured by their signed deviation from the CAD "
           "surface, over the CAD model seen " +
-          ViewPhrase(views[s]) + ". Top: the whole hull; bottom: the surveyed stretch.";
+          ViewWords(views[s], true) + ". Top: the whole hull; bottom: the surveyed stretch.";
     }
     out.push_back(f);
   }

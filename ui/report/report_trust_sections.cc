@@ -12,18 +12,6 @@
 namespace hull::report {
 namespace {
 
-std::string SideWords(HullView v) {
-  switch (v) {
-    case HullView::kBottom:
-      return "from below";
-    case HullView::kPort:
-      return "from the port side";
-    case HullView::kStarboard:
-      return "from the starboard side";
-  }
-  return "";
-}
-
 bool HasSigma(const ReportInputs& in) { return in.mapping && HasVertexSigma(in.mapping->model); }
 
 }  // namespace
@@ -40,11 +28,11 @@ void PlanTrustFigures(const ReportInputs& in, const ReportOptions& options, std:
       f.id = std::string("sigma-") + HullViewName(v);
       f.kind = FigureKind::kSigmaHeatmap;
       f.view = v;
-      f.title = "Uncertainty of the deviation, " + SideWords(v);
+      f.title = "Uncertainty of the deviation, " + ViewWords(v);
       f.caption =
           "The fused model coloured by each vertex's standard deviation σ of its deviation (the σ_h of the nearest "
           "adjusted feature, from the adjustment's covariance), seen " +
-          SideWords(v) + "; grey where no feature has a σ.";
+          ViewWords(v) + "; grey where no feature has a σ.";
       figures.push_back(f);
     }
     for (const HullView v : views) {
@@ -52,9 +40,9 @@ void PlanTrustFigures(const ReportInputs& in, const ReportOptions& options, std:
       f.id = std::string("significance-") + HullViewName(v);
       f.kind = FigureKind::kSignificanceHeatmap;
       f.view = v;
-      f.title = "Significant deviation, " + SideWords(v);
+      f.title = "Significant deviation, " + ViewWords(v);
       f.caption = "The fused model's deviation h where it exceeds its level of detection, |h| > " + k +
-                  " σ (red: off the hull, blue: below it), and grey where it does not, seen " + SideWords(v) + ".";
+                  " σ (red: off the hull, blue: below it), and grey where it does not, seen " + ViewWords(v) + ".";
       figures.push_back(f);
     }
   }
@@ -64,11 +52,11 @@ void PlanTrustFigures(const ReportInputs& in, const ReportOptions& options, std:
       f.id = std::string("change-") + HullViewName(v);
       f.kind = FigureKind::kChangeHeatmap;
       f.view = v;
-      f.title = "Change in height since the earlier survey, " + SideWords(v);
+      f.title = "Change in height since the earlier survey, " + ViewWords(v);
       f.caption =
           "This survey's (B's) fused model coloured by its change in height since survey A at the same point of "
           "the CAD surface (red: grown, blue: lower), seen " +
-          SideWords(v) + ".";
+          ViewWords(v) + ".";
       figures.push_back(f);
     }
   }
