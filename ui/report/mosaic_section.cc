@@ -8,23 +8,14 @@ namespace hull::report {
 
 void PlanMosaicFigures(const ReportInputs& in, std::vector<FigureRef>& figures) {
   if (!in.mosaic || !in.mapping) return;
-  std::vector<HullView> views;
-  for (const FigureRef& f : figures) {
-    if (f.kind == FigureKind::kHeatmap) views.push_back(f.view);
-  }
-  for (const HullView v : views) {
-    FigureRef f;
-    f.id = std::string("mosaic-") + HullViewName(v);
-    f.kind = FigureKind::kMosaic;
-    f.view = v;
-    f.title = "Photomosaic, " + ViewWords(v);
-    f.caption =
+  for (const HullView v : HeatmapViews(figures)) {
+    figures.push_back(ViewFigure(
+        FigureKind::kMosaic, "mosaic", v, "Photomosaic, " + ViewWords(v),
         "The fused model coloured by the photomosaic's per-vertex colour: the hull's albedo estimated from the "
         "camera images (each face from its best view, gains normalised, seams feathered), seen " +
-        ViewWords(v) +
-        "; grey where no image saw the surface. The vertex colours are coarser than the mosaic's texture (mosaic.obj "
-        "with its atlas, in the application). Top: the whole hull; bottom: the surveyed stretch.";
-    figures.push_back(f);
+            ViewWords(v) +
+            "; grey where no image saw the surface. The vertex colours are coarser than the mosaic's texture "
+            "(mosaic.obj with its atlas, in the application). Top: the whole hull; bottom: the surveyed stretch."));
   }
 }
 

@@ -147,4 +147,23 @@ std::string ViewWords(HullView v, bool with_orientation) {
   return "";
 }
 
+std::vector<HullView> HeatmapViews(const std::vector<FigureRef>& figures) {
+  std::vector<HullView> views;
+  for (const FigureRef& f : figures) {
+    if (f.kind == FigureKind::kHeatmap) views.push_back(f.view);
+  }
+  return views;
+}
+
+FigureRef ViewFigure(FigureKind kind, const std::string& id_prefix, HullView v, std::string title,
+                     std::string caption) {
+  FigureRef f;
+  f.id = id_prefix + "-" + HullViewName(v);
+  f.kind = kind;
+  f.view = v;
+  f.title = std::move(title);
+  f.caption = std::move(caption);
+  return f;
+}
+
 }  // namespace hull::report

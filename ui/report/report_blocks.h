@@ -22,6 +22,11 @@ std::string Ranges(std::vector<int> v);  // "0–7, 11, 13–19"
 // Where a hull figure is seen from: "from below", "from the port side", ...;
 // with_orientation adds which way the bow points ("... (bow to the right)").
 std::string ViewWords(HullView v, bool with_orientation = false);
+// The views the deviation heatmaps were planned for (the figures that follow
+// them are drawn from the same sides).
+std::vector<HullView> HeatmapViews(const std::vector<FigureRef>& figures);
+// A figure of `kind` seen from v, its id "<id_prefix>-<view name>".
+FigureRef ViewFigure(FigureKind kind, const std::string& id_prefix, HullView v, std::string title, std::string caption);
 
 Block Paragraph(std::string text);
 Block Note(std::string text);

@@ -17,47 +17,30 @@ bool HasSigma(const ReportInputs& in) { return in.mapping && HasVertexSigma(in.m
 }  // namespace
 
 void PlanTrustFigures(const ReportInputs& in, const ReportOptions& options, std::vector<FigureRef>& figures) {
-  std::vector<HullView> views;
-  for (const FigureRef& f : figures) {
-    if (f.kind == FigureKind::kHeatmap) views.push_back(f.view);
-  }
+  const std::vector<HullView> views = HeatmapViews(figures);
   const std::string k = Num(options.significance_k, 2);
   if (HasSigma(in)) {
     for (const HullView v : views) {
-      FigureRef f;
-      f.id = std::string("sigma-") + HullViewName(v);
-      f.kind = FigureKind::kSigmaHeatmap;
-      f.view = v;
-      f.title = "Uncertainty of the deviation, " + ViewWords(v);
-      f.caption =
+      figures.push_back(ViewFigure(
+          FigureKind::kSigmaHeatmap, "sigma", v, "Uncertainty of the deviation, " + ViewWords(v),
           "The fused model coloured by each vertex's standard deviation σ of its deviation (the σ_h of the nearest "
           "adjusted feature, from the adjustment's covariance), seen " +
-          ViewWords(v) + "; grey where no feature has a σ.";
-      figures.push_back(f);
+              ViewWords(v) + "; grey where no feature has a σ."));
     }
     for (const HullView v : views) {
-      FigureRef f;
-      f.id = std::string("significance-") + HullViewName(v);
-      f.kind = FigureKind::kSignificanceHeatmap;
-      f.view = v;
-      f.title = "Significant deviation, " + ViewWords(v);
-      f.caption = "The fused model's deviation h where it exceeds its level of detection, |h| > " + k +
-                  " σ (red: off the hull, blue: below it), and grey where it does not, seen " + ViewWords(v) + ".";
-      figures.push_back(f);
+      figures.push_back(ViewFigure(
+          FigureKind::kSignificanceHeatmap, "significance", v, "Significant deviation, " + ViewWords(v),
+          "The fused model's deviation h where it exceeds its level of detection, |h| > " + k +
+              " σ (red: off the hull, blue: below it), and grey where it does not, seen " + ViewWords(v) + "."));
     }
   }
   if (in.comparison) {
     for (const HullView v : views) {
-      FigureRef f;
-      f.id = std::string("change-") + HullViewName(v);
-      f.kind = FigureKind::kChangeHeatmap;
-      f.view = v;
-      f.title = "Change in height since the earlier survey, " + ViewWords(v);
-      f.caption =
+      figures.push_back(ViewFigure(
+          FigureKind::kChangeHeatmap, "change", v, "Change in height since the earlier survey, " + ViewWords(v),
           "This survey's (B's) fused model coloured by its change in height since survey A at the same point of "
           "the CAD surface (red: grown, blue: lower), seen " +
-          ViewWords(v) + ".";
-      figures.push_back(f);
+              ViewWords(v) + "."));
     }
   }
 }
