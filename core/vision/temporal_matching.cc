@@ -123,10 +123,9 @@ std::vector<char> RansacRigid(const std::vector<Eigen::Vector3d>& pa, const std:
       best = c;
       best_mask = mask;
       x_cb_ca = T;
-      const double w = static_cast<double>(c) / static_cast<double>(n);
-      const double fail = 1.0 - w * w * w;
-      if (fail <= 0) break;
-      needed = static_cast<int>(std::ceil(std::log(1.0 - o.ransac_confidence) / std::log(fail)));
+      needed = RansacDrawsNeeded(static_cast<double>(c) / static_cast<double>(n), 3, o.ransac_confidence,
+                                 o.ransac_max_iterations);
+      if (needed == 0) break;
     }
   }
   if (best < 3) return std::vector<char>(n, 0);
@@ -151,6 +150,17 @@ std::vector<char> RansacRigid(const std::vector<Eigen::Vector3d>& pa, const std:
 }
 
 }  // namespace
+
+int RansacDrawsNeeded(double inlier_ratio, int sample_size, double confidence, int max_draws) {
+  // A hypothesis with no inliers says nothing about the inlier ratio: log(1)
+  // = 0 would make the bound -inf and end the search at its first bad draw
+  // (which dropped 8 % of the demo's keyframe pairs with "0 inliers").
+  if (inlier_ratio <= 0) return max_draws;
+  const double fail = 1.0 - std::pow(std::min(inlier_ratio, 1.0), sample_size);
+  if (fail <= 0) return 0;
+  const double draws = std::ceil(std::log(1.0 - confidence) / std::log(fail));
+  return static_cast<int>(std::min(draws, static_cast<double>(max_draws)));
+}
 
 PairMatches MatchKeyframes(const KeyframeView& a, const KeyframeView& b, const CameraRig& rig,
                            const TemporalOptions& o) {

@@ -52,6 +52,12 @@ struct PairMatches {
   std::vector<char> putative_inlier;
 };
 
+// RANSAC's adaptive stop (Fischler and Bolles): the draws needed to have
+// drawn one all-inlier sample of sample_size with the given confidence at
+// this inlier ratio, at most max_draws; max_draws when the ratio is 0 (no
+// information), 0 when it is 1.
+int RansacDrawsNeeded(double inlier_ratio, int sample_size, double confidence, int max_draws);
+
 PairMatches MatchKeyframes(const KeyframeView& a, const KeyframeView& b, const CameraRig& rig,
                            const TemporalOptions& options);
 

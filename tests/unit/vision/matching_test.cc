@@ -110,6 +110,31 @@ TEST(TemporalMatching, StereoRigidRansacIsPreciseAndRecoversTheMotion) {
   EXPECT_LT((r.x_ca_cb.translation() - truth.translation()).norm(), 0.01);
 }
 
+TEST(TemporalMatching, RansacAdaptiveStop) {
+  EXPECT_EQ(RansacDrawsNeeded(0.0, 3, 0.999, 500), 500);  // no inliers: no information, keep drawing
+  EXPECT_EQ(RansacDrawsNeeded(1.0, 3, 0.999, 500), 0);
+  EXPECT_EQ(RansacDrawsNeeded(0.5, 3, 0.99, 500), 35);  // log(0.01) / log(1 - 0.125) = 34.5
+  EXPECT_EQ(RansacDrawsNeeded(0.05, 3, 0.999, 500), 500);
+}
+
+TEST(TemporalMatching, StereoRigidRansacSurvivesABadFirstDraw) {
+  // 60 % of b's triangulated points moved 30 cm: most 3-point draws are then
+  // hypotheses with no inliers at all. The search must go on past them (it
+  // used to stop at the first such draw and drop the pair with 0 inliers).
+  const VisionScene s = MakeVisionScene(true, false, 3);
+  FrontEndOptions o;
+  const KeyframeView a = MakeView(s, 0, o);
+  KeyframeView b = MakeView(s, 2, o);
+  for (std::size_t k = 0; k < b.stereo.size(); ++k) {
+    if (k % 5 < 3) b.stereo[k].p_top += Eigen::Vector3d(0.3, -0.2, 0.1);
+  }
+  const PairMatches r = MatchKeyframes(a, b, s.manifest.camera, o.temporal);
+  ASSERT_TRUE(r.accepted) << r.note;
+  EXPECT_GE(Precision(s, 0, 2, a, b, r.matches), 0.95);
+  const Pose truth = s.TruePose(0).Inverse() * s.TruePose(2);
+  EXPECT_LT(Pose::AngleBetween(r.x_ca_cb, truth), 0.3 * M_PI / 180);
+}
+
 TEST(TemporalMatching, MonoEssentialMatrixIsPreciseAndAgreesWithThePrior) {
   const VisionScene s = MakeVisionScene(false, true, 3);
   FrontEndOptions o;
