@@ -28,6 +28,8 @@ options:
   --compare-models     also run the two other surface models
   --tau M --alpha M --eps M --min-points N   mapping (see 'map --help')
   --max-iterations N   --threads N
+  --covariance M       landmark covariances and sigma of h: full (default),
+                       conditional (poses held fixed; cheap) or none
   --quiet
 )";
 
@@ -40,7 +42,7 @@ int RunPipeline(const CommandArgs& argv) {
     return kExitOk;
   }
   a.AllowOnly({"demo", "mesh", "mesh-scale", "model", "sigma0", "sigma1", "compare-models", "tau", "alpha", "eps",
-               "min-points", "max-iterations", "threads", "quiet", "out"});
+               "min-points", "max-iterations", "threads", "covariance", "quiet", "out"});
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
   CheckOutputFolder(out);
@@ -61,6 +63,7 @@ int RunPipeline(const CommandArgs& argv) {
   o.adjustment.sigma1 = a.GetDouble("sigma1", o.adjustment.sigma1);
   o.adjustment.max_iterations = static_cast<int>(a.GetInt("max-iterations", o.adjustment.max_iterations));
   o.adjustment.num_threads = static_cast<int>(a.GetInt("threads", 0));
+  o.adjustment.covariance = ParseCovarianceMethod(a.Get("covariance", "full"));
   o.compare_models = a.Has("compare-models");
   o.mapping.tau = a.GetDouble("tau", o.mapping.tau);
   o.mapping.alpha = a.GetDouble("alpha", o.mapping.alpha);

@@ -22,6 +22,7 @@ PipelineInputs LoadPipelineInputs(const std::string& bundle_dir, const std::stri
   NullProgress quiet;
   FrontEndResult fe;
   if (ExtractFeaturesIfNeeded(in.bundle, front_end, progress ? *progress : quiet, &fe)) in.front_end = std::move(fe);
+  if (in.bundle.features_from_images && in.bundle.truth) in.image_tracks = AttachImageTrackTruth(in.bundle);
   const std::string mesh = mesh_path.empty() ? in.bundle.ModelHintPath() : mesh_path;
   if (mesh.empty()) {
     throw InputError({(fs::path(bundle_dir) / "survey.json").string(), 0, 0, "model_hint"},
@@ -65,6 +66,7 @@ MappingResult RunMappingStep(const PipelineInputs& in, const AdjustmentResult& a
 PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& o, Progress& progress) {
   o.Check();
   PipelineResult r;
+  r.image_tracks = in.image_tracks;
   {
     SubProgress p(progress, 0.0, 0.1);
     r.alignment = RunAlignment(in, o, p);
@@ -133,6 +135,7 @@ void WritePipelineResult(const PipelineInputs& in, const PipelineResult& r, cons
     }
     if (r.mapping) WriteMappingResult(*r.mapping, (fs::path(dir) / "mapping").string());
     std::string eval;
+    if (r.image_tracks) eval += r.image_tracks->ToString() + "\n";
     if (r.evaluation) {
       eval += std::string(SurfaceModelName(r.adjustment.options.model)) + ":\n" + r.evaluation->ToString();
     }

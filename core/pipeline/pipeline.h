@@ -16,6 +16,7 @@
 #include "mapping/mapping_options.h"
 #include "mapping/mapping_result.h"
 #include "registration/model_alignment.h"
+#include "simulate/image_track_truth.h"
 #include "survey/survey.h"
 #include "vision/front_end.h"
 #include "vision/vision_options.h"
@@ -31,6 +32,9 @@ struct PipelineInputs {
   // Set when the bundle's observations came from its images (a version 2
   // bundle without features.csv): what the visual front end found.
   std::optional<FrontEndResult> front_end;
+  // Tracks from the front end on a simulated survey with truth/scene.ply:
+  // their truth, derived from the true scene (bundle.truth->landmarks holds it).
+  std::optional<ImageTrackTruth> image_tracks;
 };
 
 // Reads the bundle and its mesh (mesh_path empty: the bundle's model_hint).
@@ -61,7 +65,8 @@ struct PipelineResult {
   std::vector<AdjustmentResult> baselines;         // compare_models: the other two models
   std::optional<AdjustmentEvaluation> evaluation;  // when the bundle has truth
   std::vector<AdjustmentEvaluation> baseline_evaluations;
-  std::optional<MappingResult> mapping;  // of the chosen model's adjustment
+  std::optional<MappingResult> mapping;         // of the chosen model's adjustment
+  std::optional<ImageTrackTruth> image_tracks;  // the inputs', for evaluation.txt
 };
 
 // Step 1: the initial model pose.

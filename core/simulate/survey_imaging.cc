@@ -1,5 +1,7 @@
 #include "simulate/survey_imaging.h"
 
+#include "simulate/image_track_truth.h"
+
 #include <tbb/parallel_for.h>
 
 #include <atomic>
@@ -31,12 +33,7 @@ std::unique_ptr<TrueScene> MakeTrueScene(const SimulatedSurvey& s) {
 }
 
 Pose TrueCameraPose(const SimulatedSurvey& s, std::size_t k, bool bottom_camera) {
-  const SurveyTruth& truth = *s.bundle.truth;
-  const SurveyManifest& man = s.bundle.manifest;
-  const TruePose& p = truth.poses[k];
-  const Pose x_gc = Pose::FromVector(p.x_gv) * VehicleToCamera(man, Pose::FromVector(truth.x_s_cT), p.servo);
-  const Pose x_Mc = Pose::FromVector(truth.x_gM).Inverse() * x_gc;
-  return bottom_camera ? x_Mc * Pose::FromVector(man.camera.top_to_bottom) : x_Mc;
+  return TrueCameraPoseFromTruth(s.bundle, k, bottom_camera);
 }
 
 std::unique_ptr<UnderwaterCamera> MakeSurveyCamera(const SurveyManifest& man, const UnderwaterImagingOptions& o,

@@ -24,6 +24,13 @@ std::unordered_map<std::int64_t, int> SurveyBundle::KeyframeIndex() const {
   return index;
 }
 
+void SurveyBundle::AdoptImageFeatureTracks(std::vector<FeatureObservation> tracks) {
+  features = std::move(tracks);
+  features_from_images = true;
+  landmarks.reset();
+  if (truth) truth->landmarks.clear();
+}
+
 std::string SurveyBundle::ModelHintPath() const {
   if (!manifest.model_hint) return "";
   std::filesystem::path p(*manifest.model_hint);

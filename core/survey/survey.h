@@ -183,6 +183,12 @@ struct SurveyBundle {
   std::optional<SurveyTruth> truth;
   std::optional<AcousticSequence> sonar;
   std::optional<SurveyImages> images;  // version 2 with an images/ folder
+  // The feature tracks were made by the visual front end from the images
+  // (in this process, or on disk: features.csv with the front end's
+  // match-graph.csv beside it). Their landmark ids are the front end's own,
+  // so landmarks.csv and truth/landmarks.csv, keyed by the ids of the tracks
+  // the survey came with, do not describe them and are not kept.
+  bool features_from_images = false;
 
   // Absolute path of a keyframe's image, or "" when it has none.
   std::string ImagePath(std::int64_t keyframe, bool bottom_camera = false) const;
@@ -193,6 +199,10 @@ struct SurveyBundle {
   std::string ModelHintPath() const;
   // Number of distinct landmarks observed.
   std::size_t CountLandmarks() const;
+  // Takes feature tracks made by the visual front end: sets features and
+  // features_from_images, drops landmarks.csv's initial positions and the
+  // truth landmarks (other ids; simulate/image_track_truth.h derives theirs).
+  void AdoptImageFeatureTracks(std::vector<FeatureObservation> tracks);
 };
 
 }  // namespace hull

@@ -556,6 +556,11 @@ SurveyBundle ReadImpl(const std::string& dir, std::vector<Problem>* problems) {
     for (const Problem& p : found) diag.Error(p.where, p.message);
   }
   ReadTruth(dir, b, kf, diag);
+  // features.csv written by the visual front end (match-graph.csv beside it):
+  // its landmark ids are the front end's, not those of landmarks.csv and
+  // truth/landmarks.csv (simulate/image_track_truth.h derives their truth).
+  if (!b.features.empty() && fs::exists(Rel(dir, "match-graph.csv"), ec))
+    b.AdoptImageFeatureTracks(std::move(b.features));
   const std::string sonar_dir = Rel(dir, "sonar");
   if (fs::exists(Rel(sonar_dir, "sonar.json"), ec)) {
     if (problems) {

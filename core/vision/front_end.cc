@@ -227,7 +227,7 @@ bool ExtractFeaturesIfNeeded(SurveyBundle& bundle, const FrontEndOptions& option
                              FrontEndResult* result) {
   if (!bundle.features.empty() || !bundle.images || bundle.images->present() == 0) return false;
   FrontEndResult r = RunFrontEnd(bundle, options, progress);
-  bundle.features = r.features;
+  bundle.AdoptImageFeatureTracks(r.features);
   if (result) *result = std::move(r);
   return true;
 }

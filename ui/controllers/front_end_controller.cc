@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "simulate/image_track_truth.h"
 #include "ui/session/inspection_parameters.h"
 
 namespace hull::ui {
@@ -67,7 +68,14 @@ void FrontEndController::Extract() {
         SubProgress p(progress, 0.0, 0.95);
         auto result = std::make_shared<const FrontEndResult>(RunFrontEnd(*bundle, options, p));
         progress.Update(0.96, "preparing the features for display");
-        bundle->features = result->features;
+        bundle->AdoptImageFeatureTracks(result->features);
+        if (bundle->truth) {
+          try {
+            AttachImageTrackTruth(*bundle);  // a simulated survey: the new tracks' truth from its scene
+          } catch (const InputError&) {
+            // an unreadable truth/scene.ply: the tracks simply have no truth to show
+          }
+        }
         Entry e;
         e.overlays = std::make_shared<const SurveyOverlays>(ComputeSurveyOverlays(*bundle));
         e.bundle = std::move(bundle);
