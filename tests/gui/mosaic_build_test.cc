@@ -32,6 +32,7 @@
 #include "simulate/survey_simulator.h"
 #include "ui/controllers/mosaic_controller.h"
 #include "ui/session/inspection_results.h"
+#include "ui/session/mosaic_layer.h"
 #include "ui/views/scene_view.h"
 
 namespace hull::ui {
@@ -132,8 +133,10 @@ std::map<std::string, QByteArray> Snapshot(const fs::path& dir) {
   return files;
 }
 
-// Builds through the menu action, answering its folder dialog with `folder`.
+// Builds through the menu action, answering its folder dialog with
+// `folder` (which must exist, as in the dialog).
 void TriggerBuild(Window& win, const QString& folder) {
+  QVERIFY(QDir(folder).exists());
   QTimer::singleShot(300, [folder] {
     auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
     if (!dialog) return;
@@ -146,6 +149,33 @@ void TriggerBuild(Window& win, const QString& folder) {
   win.w.action(QStringLiteral("buildMosaic"))->trigger();
 }
 
+// The mosaic layer alone in the 3-D view (docks hidden), seen from the
+// vehicle's side of the surveyed stretch, grabbed.
+QImage ShowTheMosaicAlone(Window& win) {
+  SceneOptions o = win.w.sceneView()->options();
+  for (SceneLayer layer : AllSceneLayers()) o.visible[layer] = layer == SceneLayer::kPhotomosaic;
+  win.w.sceneView()->SetOptions(o);
+  const SurveyBundle& b = *win.w.session()->bundle();
+  Eigen::Vector3d landmarks = Eigen::Vector3d::Zero(), vehicle = Eigen::Vector3d::Zero();
+  for (const TrueLandmark& l : b.truth->landmarks) landmarks += l.p;
+  landmarks /= static_cast<double>(b.truth->landmarks.size());
+  for (const TruePose& p : b.truth->poses) vehicle += p.x_gv.head<3>();
+  vehicle /= static_cast<double>(b.truth->poses.size());
+  const Eigen::Vector3d along = b.truth->poses.back().x_gv.head<3>() - b.truth->poses.front().x_gv.head<3>();
+  CameraState c;
+  c.focal_point = {landmarks.x(), landmarks.y(), landmarks.z()};
+  const Eigen::Vector3d eye = landmarks + 1.6 * (vehicle - landmarks);
+  c.position = {eye.x(), eye.y(), eye.z()};
+  c.view_up = {along.x(), along.y(), along.z()};
+  c.view_angle = 40;
+  for (QDockWidget* dock : win.w.findChildren<QDockWidget*>()) dock->hide();  // the 3-D view alone, large
+  win.w.sceneView()->SetCamera(c);
+  testing::Settle(&win.w);
+  QTest::qWait(200);
+  testing::Settle(&win.w);
+  return win.w.sceneView()->Grab();
+}
+
 }  // namespace
 
 class MosaicBuildTest : public QObject {
@@ -153,6 +183,7 @@ class MosaicBuildTest : public QObject {
 
  private slots:
   void initTestCase() { QVERIFY(!SurveyDir().isEmpty()); }
+  void cleanupTestCase() { QDir(SurveyDir()).removeRecursively(); }
 
   void buildsShowsAndCancelKeepsThePreviousFolder() {
     Window win;
@@ -215,30 +246,12 @@ class MosaicBuildTest : public QObject {
           mosaic->faces, summary.size());
 
     // Look at it: the textured stretch from the vehicle's side.
-    SceneOptions o = win.w.sceneView()->options();
-    for (SceneLayer layer : AllSceneLayers()) o.visible[layer] = layer == SceneLayer::kPhotomosaic;
-    win.w.sceneView()->SetOptions(o);
-    const SurveyBundle& b = *win.w.session()->bundle();
-    Eigen::Vector3d landmarks = Eigen::Vector3d::Zero(), vehicle = Eigen::Vector3d::Zero();
-    for (const TrueLandmark& l : b.truth->landmarks) landmarks += l.p;
-    landmarks /= static_cast<double>(b.truth->landmarks.size());
-    for (const TruePose& p : b.truth->poses) vehicle += p.x_gv.head<3>();
-    vehicle /= static_cast<double>(b.truth->poses.size());
-    const Eigen::Vector3d along = b.truth->poses.back().x_gv.head<3>() - b.truth->poses.front().x_gv.head<3>();
-    CameraState c;
-    c.focal_point = {landmarks.x(), landmarks.y(), landmarks.z()};
-    const Eigen::Vector3d eye = landmarks + 1.6 * (vehicle - landmarks);
-    c.position = {eye.x(), eye.y(), eye.z()};
-    c.view_up = {along.x(), along.y(), along.z()};
-    c.view_angle = 40;
-    for (QDockWidget* dock : win.w.findChildren<QDockWidget*>()) dock->hide();  // the 3-D view alone, large
-    win.w.sceneView()->SetCamera(c);
-    testing::Settle(&win.w);
-    QTest::qWait(200);
-    testing::Settle(&win.w);
-    const QImage shot = win.w.sceneView()->Grab();
+    const QImage shot = ShowTheMosaicAlone(win);
     QVERIFY(!shot.isNull());
     QVERIFY(shot.save(OutputDir() + QStringLiteral("/mosaic_build_scene.png")));
+    // docs/images/scene-photomosaic-built.png (the user guide's figure).
+    QVERIFY(shot.scaledToWidth(720, Qt::SmoothTransformation)
+                .save(OutputDir() + QStringLiteral("/scene-photomosaic-built.png")));
     // Mostly textured: the middle third of the view is the hull's paint, not
     // the background and not black.
     const QColor background = shot.pixelColor(2, 2);
@@ -288,6 +301,49 @@ class MosaicBuildTest : public QObject {
     QVERIFY(win.w.session()->mosaic() == mosaic);
     QVERIFY(win.errors.isEmpty());
     QVERIFY(build->isEnabled());
+  }
+
+  // The whole way: the inspection run here (alignment, adjustment from the
+  // bundle's feature tracks, mapping), then the build.
+  void buildsFromTheInspectionRunHere() {
+    Window win;
+    QVERIFY(QTest::qWaitForWindowExposed(&win.w));
+    win.w.OpenPaths({SurveyDir()});
+    QTRY_VERIFY_WITH_TIMEOUT(!win.w.jobs()->IsBusy() && win.w.session()->mesh(), 120000);
+    QAction* build = win.w.action(QStringLiteral("buildMosaic"));
+    QVERIFY(!build->isEnabled());
+    QElapsedTimer timer;
+    timer.start();
+    win.w.action(QStringLiteral("runInspection"))->trigger();
+    QTRY_VERIFY_WITH_TIMEOUT(win.w.session()->mapping() && !win.w.jobs()->IsBusy(), 600000);
+    const double run_seconds = timer.elapsed() / 1000.0;
+    QVERIFY2(win.errors.isEmpty(), qPrintable(win.errors.join('\n')));
+    QVERIFY2(build->isEnabled(), qPrintable(win.w.mosaicBuilder()->Unavailable()));
+    const QString results = OutputDir() + QStringLiteral("/mosaic_build_run_results");
+    QDir(results).removeRecursively();
+    QVERIFY(QDir().mkpath(results));
+    timer.restart();
+    TriggerBuild(win, results);
+    QTRY_VERIFY_WITH_TIMEOUT(win.w.jobs()->IsBusy(MosaicController::kMosaicJob), 5000);
+    HI_WAIT_IDLE(win.w.jobs(), 240000);
+    QVERIFY2(win.errors.isEmpty(), qPrintable(win.errors.join('\n')));
+    const auto& mosaic = win.w.session()->mosaic();
+    QVERIFY(mosaic && mosaic->adjustment_key == win.w.session()->adjustment()->key);
+    QVERIFY(win.w.sceneView()->Stats(SceneLayer::kPhotomosaic).visible);
+    const fs::path root(Native(results));
+    QVERIFY(fs::is_regular_file(root / "mosaic" / "mosaic_atlas.png"));
+    QVERIFY(fs::is_regular_file(root / "adjustment" / "adjustment.json"));
+    // The adjustment written is the one on screen: the mosaic opens from the folder as built.
+    const MosaicLayer reopened = LoadMosaicLayer(Native(results));
+    QVERIFY((reopened.x_gM.ToVector() - win.w.session()->adjustment()->result->x_gM).norm() < 1e-9);
+    QVERIFY(win.w.CollectReport()->mosaic == mosaic->coloured);
+    qInfo("inspection run %.1f s, then the GUI build %.1f s", run_seconds, timer.elapsed() / 1000.0);
+    // summary.json names the model where it lies, not where it was written.
+    const std::string summary = ReadFileToString((root / "summary.json").string());
+    QVERIFY2(summary.find((root / "mapping" / "model.ply").string()) != std::string::npos, summary.c_str());
+    QVERIFY2(summary.find(".writing-") == std::string::npos, summary.c_str());
+    const QImage shot = ShowTheMosaicAlone(win);
+    QVERIFY(!shot.isNull() && shot.save(OutputDir() + QStringLiteral("/mosaic_build_run_scene.png")));
   }
 
   void errorsAreMessagesNamingThePath() {

@@ -162,6 +162,12 @@ MosaicJobResult RunMosaicJob(const MosaicJobInput& in, Progress& progress) {
   // One swap for the whole folder: the results and their mosaic together.
   WriteDirectoryAtomic(out.string(), [&](const std::string& tmp) {
     WritePipelineResult(pin, pr, tmp);
+    // summary.json names the remeshed model in the folder it was written
+    // to (here the hidden sibling): where it will lie instead.
+    const std::string summary_path = (fs::path(tmp) / "summary.json").string();
+    Json summary = Json::Parse(ReadFileToString(summary_path), summary_path);
+    if (summary.Get("remeshed_model")) summary.Set("remeshed_model", (out / "mapping" / "model.ply").string());
+    WriteFileAtomic(summary_path, summary.Dump());
     WriteMosaic(r, (fs::path(tmp) / "mosaic").string());
   });
 
