@@ -17,8 +17,10 @@
 #include <QDockWidget>
 #include <QFile>
 #include <QFileDialog>
+#include <QScrollArea>
 #include <QSignalSpy>
 #include <QTimer>
+#include <QUndoStack>
 #include <QtTest>
 #include <filesystem>
 #include <fstream>
@@ -274,10 +276,29 @@ class MosaicBuildTest : public QObject {
     // Cancel a second build (other options: it would write another atlas):
     // the folder stays byte for byte, the layer stays.
     const auto before = Snapshot(root);
-    MosaicOptions other;
-    other.texel_size = 0.008;
-    other.feather_rings = 0;
-    win.w.mosaicBuilder()->SetOptions(other);
+    // The Photomosaic group of the parameter panel sets the next build's
+    // options; undo brings the previous value back.
+    QCOMPARE(win.w.mosaicBuilder()->options().texel_size, MosaicOptions().texel_size);
+    win.Real("mosaic_texel_size")->setValue(0.006);
+    QCOMPARE(win.w.mosaicBuilder()->options().texel_size, 0.006);
+    win.w.parameterPanel()->undoStack()->undo();
+    QCOMPARE(win.w.mosaicBuilder()->options().texel_size, MosaicOptions().texel_size);
+    QVERIFY(!win.w.jobs()->IsBusy());  // nothing re-runs
+    win.Real("mosaic_texel_size")->setValue(0.008);
+    QCOMPARE(win.w.mosaicBuilder()->options().texel_size, 0.008);
+    {  // The group as the user sees it (looked at).
+      ParameterPanel* panel = win.w.parameterPanel();
+      auto* dock = qobject_cast<QDockWidget*>(panel->parentWidget());
+      QVERIFY(dock);
+      dock->setFloating(true);
+      dock->resize(420, 700);
+      dock->show();
+      if (auto* scroll = panel->findChild<QScrollArea*>())
+        scroll->ensureWidgetVisible(panel->editor(QStringLiteral("mosaic_normalisation")));
+      testing::Settle(dock);
+      QVERIFY(panel->grab().save(OutputDir() + QStringLiteral("/mosaic_build_parameters.png")));
+      dock->hide();
+    }
     QSignalSpy cancelled(win.w.jobs(), &JobRunner::jobCancelled);
     progress.clear();
     TriggerBuild(win, results);

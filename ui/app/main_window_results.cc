@@ -213,6 +213,10 @@ void MainWindow::ConnectResults() {
   connect(mosaic_, &MosaicController::message, this,
           [this](const QString& text) { statusBar()->showMessage(text, 15000); });
   connect(mosaic_, &MosaicController::stateChanged, this, &MainWindow::UpdateResultActions);
+  // The Photomosaic group: used by the next build, re-runs nothing.
+  connect(parameters_, &ParameterPanel::parametersChanged, mosaic_,
+          [this](const ParameterValues& values) { mosaic_->SetOptions(MosaicOptionsFrom(values)); });
+  mosaic_->SetOptions(MosaicOptionsFrom(parameters_->values()));
   cross_section_->SetCompareEnabled(false);
 }
 
