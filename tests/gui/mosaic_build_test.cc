@@ -1,15 +1,18 @@
 // Inspection > Build photomosaic in the main window, on a small rendered
 // version 2 survey (the demo preset's monocular rig at a quarter of the
-// HAUV's resolution, 340x256, over 1.5 m of the keel) with results made from
-// its truth: the true poses as the adjustment and the core Mapper's
-// remeshed model of them (running the bundle adjustment here would take
-// minutes; the mosaic needs only adjusted poses and a model). The action is
-// disabled until there are results; building runs in a job with rising
-// progress, writes the results folder (results, mosaic/ with OBJ, MTL,
-// atlas, PLY), shows the textured layer and hands mosaic.ply to the report
-// hook; cancel leaves the previous folder byte for byte; an unwritable
-// folder, a file, another survey's results and missing images are refused
-// with a message naming the path, without a crash.
+// HAUV's resolution, 340x256, over 1.5 m of the keel, 6 keyframes, with its
+// features.csv). First with results made from its truth (the true poses as
+// the adjustment and the core Mapper's remeshed model of them): the action
+// is disabled until there are results; building runs in a job with rising
+// progress, writes the results folder (the results, mosaic/ with OBJ, MTL,
+// atlas, PLY; the user's own file kept), shows the textured layer (looked
+// at: textured, no black) and hands mosaic.ply to the report hook; the
+// parameter panel's Photomosaic group sets the next build's options, with
+// undo; cancel leaves the previous folder byte for byte. Then the whole way
+// (Inspection > Run in the window, then the build). Finally the refusals:
+// a file, a folder below a file, another survey's results, images missing
+// since opening, no results, a survey without images — each a message
+// naming the reason and the path, nothing written, no crash.
 #include <QAction>
 #include <QApplication>
 #include <QCryptographicHash>
@@ -32,6 +35,7 @@
 #include "mapping/mapper.h"
 #include "mosaic/mosaic_io.h"
 #include "simulate/survey_simulator.h"
+#include "synthetic_survey.h"
 #include "ui/controllers/mosaic_controller.h"
 #include "ui/session/inspection_results.h"
 #include "ui/session/mosaic_layer.h"
@@ -414,6 +418,13 @@ class MosaicBuildTest : public QObject {
     win.w.session()->ClearResults();
     QVERIFY(!win.w.action(QStringLiteral("buildMosaic"))->isEnabled());
     e = expect(fresh, QStringLiteral("Run the inspection first"));
+    QVERIFY2(e.isEmpty(), qPrintable(e));
+    // A survey without camera images (version 1): refused for that.
+    const testing::SyntheticSurvey& v1 = testing::MakeSyntheticSurvey();
+    QVERIFY(!v1.bundle->images || v1.bundle->images->present() == 0);
+    win.w.session()->SetSurvey(LoadedSurvey{QStringLiteral("synthetic"), v1.bundle,
+                                            std::make_shared<const SurveyOverlays>(ComputeSurveyOverlays(*v1.bundle))});
+    e = expect(fresh, QStringLiteral("no camera images"));
     QVERIFY2(e.isEmpty(), qPrintable(e));
   }
 };
