@@ -31,7 +31,6 @@ namespace fs = std::filesystem;
 // What the worker needs of the session, shared (nothing is copied on the GUI thread).
 struct MosaicJobInput {
   std::shared_ptr<const SurveyBundle> bundle;
-  std::shared_ptr<const TriangleMesh> mesh;
   std::string bundle_path, mesh_path, out;
   std::shared_ptr<const FrontEndResult> front_end;
   std::shared_ptr<const ModelAlignment> alignment;
@@ -159,6 +158,8 @@ MosaicJobResult RunMosaicJob(const MosaicJobInput& in, Progress& progress) {
     if (b->evaluation) pr.baseline_evaluations.push_back(*b->evaluation);
   }
   pr.mapping = *in.mapping;
+  // Cancel acts up to here; the write below is short and not interrupted.
+  progress.ThrowIfCancelled();
   // One swap for the whole folder: the results and their mosaic together.
   WriteDirectoryAtomic(out.string(), [&](const std::string& tmp) {
     WritePipelineResult(pin, pr, tmp);
@@ -241,7 +242,6 @@ void MosaicController::Build(const QString& results) {
   MosaicJobInput in;
   in.bundle = session_->survey()->bundle;
   in.bundle_path = Native(session_->survey()->path);
-  in.mesh = session_->mesh()->mesh;
   in.mesh_path = Native(session_->mesh()->path);
   in.out = Native(last_folder_);
   in.front_end = session_->frontEnd();

@@ -13,7 +13,8 @@
 // 'hullinspect-cli export' and File > Open photomosaic read it. The folder
 // is replaced in one atomic swap after the mosaic is built
 // (WriteDirectoryAtomic; the user's own files in it are kept): a cancelled
-// or failed build leaves it as it was, a previous mosaic included. A folder
+// or failed build leaves it as it was, a previous mosaic included (Cancel
+// acts until that write starts, the last few per cent). A folder
 // holding the results of another survey bundle is refused. On success the
 // mosaic goes into the Session: the 3-D view's textured layer, and the
 // report hook's Photomosaic (models/report_source.h).
