@@ -27,6 +27,7 @@
 #include "ui/controllers/document_controller.h"
 #include "ui/controllers/front_end_controller.h"
 #include "ui/controllers/inspection_controller.h"
+#include "ui/controllers/mosaic_controller.h"
 #include "ui/jobs/job_runner.h"
 #include "ui/jobs/job_status_widget.h"
 #include "ui/panels/layers_panel.h"
@@ -60,6 +61,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   documents_ = new DocumentController(session_, jobs_, this);
   inspection_ = new InspectionController(session_, jobs_, this);
   front_end_ = new FrontEndController(session_, jobs_, this);
+  mosaic_ = new MosaicController(session_, jobs_, this);
   recent_ = new RecentFiles(this);
 
   scene_ = new SceneView(this);

@@ -32,6 +32,7 @@ class JobRunner;
 class JobStatusWidget;
 class KeyframeView;
 class LayersPanel;
+class MosaicController;
 class ObjectsPanel;
 class ParameterPanel;
 class PickInfoPanel;
@@ -88,6 +89,7 @@ class MainWindow : public QMainWindow {
   DocumentController* documents() const { return documents_; }
   InspectionController* inspection() const { return inspection_; }
   FrontEndController* frontEnd() const { return front_end_; }
+  MosaicController* mosaicBuilder() const { return mosaic_; }
   ImagesView* imagesView() const { return images_; }
   SceneView* sceneView() const { return scene_; }
   LayersPanel* layersPanel() const { return layers_; }
@@ -134,6 +136,7 @@ class MainWindow : public QMainWindow {
   void AskCompareSurveys();
   void AskExportResult(const QString& what);
   void AskExportScreenshots();
+  void AskBuildMosaic();
   void RebuildRecentMenu();
   void UpdatePlacement();
   void UpdateTitle();
@@ -157,6 +160,7 @@ class MainWindow : public QMainWindow {
   DocumentController* documents_ = nullptr;
   InspectionController* inspection_ = nullptr;
   FrontEndController* front_end_ = nullptr;
+  MosaicController* mosaic_ = nullptr;
   ImagesView* images_ = nullptr;
   QDockWidget* images_dock_ = nullptr;
   RecentFiles* recent_ = nullptr;

@@ -16,6 +16,7 @@
 #include "ui/app/main_window.h"
 #include "ui/controllers/document_controller.h"
 #include "ui/controllers/inspection_controller.h"
+#include "ui/controllers/mosaic_controller.h"
 #include "ui/controllers/result_exports.h"
 #include "ui/controllers/survey_compare_controller.h"
 #include "ui/jobs/job_runner.h"
@@ -208,6 +209,14 @@ void MainWindow::ConnectResults() {
   connect(exporter_, &ResultExporter::message, this,
           [this](const QString& text) { statusBar()->showMessage(text, 8000); });
   connect(session_, &Session::mappingChanged, this, &MainWindow::UpdateResultActions);
+  connect(mosaic_, &MosaicController::failed, this, &MainWindow::ReportError);
+  connect(mosaic_, &MosaicController::message, this,
+          [this](const QString& text) { statusBar()->showMessage(text, 15000); });
+  connect(mosaic_, &MosaicController::stateChanged, this, &MainWindow::UpdateResultActions);
+  // The Photomosaic group: used by the next build, re-runs nothing.
+  connect(parameters_, &ParameterPanel::parametersChanged, mosaic_,
+          [this](const ParameterValues& values) { mosaic_->SetOptions(MosaicOptionsFrom(values)); });
+  mosaic_->SetOptions(MosaicOptionsFrom(parameters_->values()));
   cross_section_->SetCompareEnabled(false);
 }
 
@@ -233,6 +242,9 @@ void MainWindow::CreateInspectionMenu() {
                      "the solver plots"));
   inspect->addAction(compare);
   AddImagesEntries(inspect);
+  QAction* mosaic = NewAction(QStringLiteral("buildMosaic"), QStringLiteral("Build p&hotomosaic…"), this,
+                              [this] { AskBuildMosaic(); });
+  inspect->addAction(mosaic);
   QAction* surveys = NewAction(QStringLiteral("compareSurveys"), QStringLiteral("Compare &with…"), this,
                                [this] { AskCompareSurveys(); });
   surveys->setToolTip(
@@ -290,6 +302,13 @@ void MainWindow::UpdateResultActions() {
   if (QAction* a = action(QStringLiteral("compareModels"))) a->setEnabled(inspection_->CanCompare());
   if (QAction* a = action(QStringLiteral("cancelJobs"))) a->setEnabled(jobs_->IsBusy());
   UpdateImagesActions();
+  if (QAction* a = action(QStringLiteral("buildMosaic")); a && mosaic_) {
+    const QString why = mosaic_->Unavailable();
+    a->setEnabled(why.isEmpty() && !mosaic_->busy());
+    a->setToolTip(why.isEmpty() ? QStringLiteral("Texture the remeshed model from the survey's camera images with the "
+                                                 "adjusted poses, into a results folder's mosaic/")
+                                : why);
+  }
   for (const char* name : {"exportModel", "exportObjects", "exportZones"}) {
     if (QAction* a = action(QString::fromLatin1(name))) a->setEnabled(exporter_ && exporter_->CanExport());
   }
@@ -366,6 +385,14 @@ QStringList MainWindow::SaveAllScreenshots(const QString& directory) {
 void MainWindow::AskExportScreenshots() {
   const QString dir = QFileDialog::getExistingDirectory(this, QStringLiteral("Save a screenshot of every view into"));
   if (!dir.isEmpty()) SaveAllScreenshots(dir);
+}
+
+void MainWindow::AskBuildMosaic() {
+  QString start = mosaic_->lastFolder();
+  if (start.isEmpty() && session_->survey()) start = QFileInfo(session_->survey()->path).absolutePath();
+  const QString folder = QFileDialog::getExistingDirectory(
+      this, QStringLiteral("Build the photomosaic into a results folder (its mosaic/ folder)"), start);
+  if (!folder.isEmpty()) mosaic_->Build(folder);
 }
 
 std::optional<ReportSource> MainWindow::CollectReport() const {

@@ -1,5 +1,7 @@
 #include "ui/models/report_source.h"
 
+#include <filesystem>
+
 namespace hull::ui {
 
 std::optional<ReportSource> CollectReportSource(const Session& session, const ParameterValues& parameters,
@@ -23,6 +25,12 @@ std::optional<ReportSource> CollectReportSource(const Session& session, const Pa
   }
   if (session.mapping()) r.mapping = session.mapping()->result;
   r.comparison = session.comparison();
+  if (const auto& mosaic = session.mosaic();
+      mosaic && mosaic->coloured && !mosaic->adjustment_key.empty() && mosaic->adjustment_key == run.key) {
+    r.mosaic = mosaic->coloured;
+    r.mosaic_path = mosaic->ply;
+    r.results_path = std::filesystem::path(mosaic->dir).parent_path().string();
+  }
   return r;
 }
 

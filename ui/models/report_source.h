@@ -10,6 +10,7 @@
 #include <QString>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "mapping/mapping_result.h"
 #include "pipeline/pipeline.h"
@@ -30,6 +31,14 @@ struct ReportSource {
   std::shared_ptr<const MappingResult> mapping;  // nullptr: not mapped
   // The comparison with another survey on screen (nullptr: none).
   std::shared_ptr<const SurveyComparisonRun> comparison;
+  // The photomosaic of the adjustment on screen (Inspection > Build
+  // photomosaic): mosaic.ply's mesh with its per-vertex colour, for the
+  // report's Photomosaic section (report_inputs.h: mosaic, mosaic_path), and
+  // the results folder it was written into. nullptr / "": none, or the
+  // mosaic on screen was opened from a folder or made from other results.
+  std::shared_ptr<const TriangleMesh> mosaic;
+  std::string mosaic_path;
+  std::string results_path;
 };
 
 // nullopt until the session holds an alignment and an adjustment.

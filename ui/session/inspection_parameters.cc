@@ -108,6 +108,39 @@ void AddFrontEndFields(ParameterTable& t) {
                       1000, f.tracks.min_keyframes, QStringLiteral("Tracks seen in fewer keyframes are dropped.")));
 }
 
+// The photomosaic (core/mosaic/photomosaic.h): used by the next Inspection >
+// Build photomosaic; a change re-runs nothing.
+void AddMosaicFields(ParameterTable& t) {
+  const MosaicOptions m;
+  const QString g = QStringLiteral("Photomosaic");
+  const Stage s = Stage::kNone;
+  t.push_back(Real(QStringLiteral("mosaic_texel_size"), g, s, QStringLiteral("Texel size"), 0.0005, 0.1, m.texel_size,
+                   4, 0.001, QStringLiteral("m"),
+                   QStringLiteral("Surface length of one atlas texel (it grows by 25 % steps when the atlas "
+                                  "would exceed 16384 pixels).")));
+  t.push_back(Real(QStringLiteral("mosaic_max_incidence_deg"), g, s, QStringLiteral("Max. incidence"), 1.0, 89.0,
+                   m.max_incidence_deg, 1, 1.0, QStringLiteral("°"),
+                   QStringLiteral("A view seeing a face more obliquely than this (from its normal) cannot texture "
+                                  "it.")));
+  t.push_back(Real(QStringLiteral("mosaic_seam_weight"), g, s, QStringLiteral("Seam weight"), 0.0, 10.0, m.seam_weight,
+                   2, 0.1, {},
+                   QStringLiteral("Cost of a seam between neighbouring faces against −ln of their score ratio: "
+                                  "higher keeps larger regions on one image (0: the best view per face).")));
+  t.push_back(Integer(QStringLiteral("mosaic_feather_rings"), g, s, QStringLiteral("Feathering rings"), 0, 50,
+                      m.feather_rings,
+                      QStringLiteral("One-rings of faces over which neighbouring images blend at a seam (0: hard "
+                                     "seams).")));
+  t.push_back(Choice(
+      QStringLiteral("mosaic_normalisation"), g, s, QStringLiteral("Normalisation"),
+      {QStringLiteral("gains"), QStringLiteral("model"), QStringLiteral("none")},
+      {QStringLiteral("Model and gains"), QStringLiteral("Photometric model"), QStringLiteral("None (raw pixels)")},
+      m.normalisation == MosaicNormalisation::kModelAndGains ? 0
+      : m.normalisation == MosaicNormalisation::kModel       ? 1
+                                                             : 2,
+      QStringLiteral("How pixel values become albedo: the rig's strobe, water and vignetting undone, "
+                     "then each image's gain levelled against its overlaps.")));
+}
+
 ParameterTable MakeTable() {
   const AdjustmentOptions a;
   ParameterTable t;
@@ -172,6 +205,7 @@ ParameterTable MakeTable() {
                    QStringLiteral("A deviation h is significant where |h| > k·σ, σ being the vertex's standard "
                                   "deviation from the adjustment (1.96: 95 % for a normal error). Changes the "
                                   "significance heatmap at once; nothing is re-run.")));
+  AddMosaicFields(t);
   return t;
 }
 
@@ -233,6 +267,11 @@ std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values
   } catch (const OptionError& e) {
     errors.push_back({QString::fromStdString(e.field()), QString::fromStdString(e.what())});
   }
+  try {
+    MosaicOptionsFrom(values).Check();
+  } catch (const OptionError& e) {
+    errors.push_back({QStringLiteral("mosaic_") + QString::fromStdString(e.field()), QString::fromStdString(e.what())});
+  }
   // The front end's structs name their own fields ("ratio" twice): mapped
   // back to the table's keys.
   const FrontEndOptions f = FrontEndOptionsFrom(values);
@@ -251,6 +290,20 @@ std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values
     }
   }
   return errors;
+}
+
+MosaicOptions MosaicOptionsFrom(const ParameterValues& values) {
+  MosaicOptions o;
+  auto real = [&](const char* key, double& field) { field = values.value(QLatin1String(key), field).toDouble(); };
+  real("mosaic_texel_size", o.texel_size);
+  real("mosaic_max_incidence_deg", o.max_incidence_deg);
+  real("mosaic_seam_weight", o.seam_weight);
+  o.feather_rings = values.value(QStringLiteral("mosaic_feather_rings"), o.feather_rings).toInt();
+  const QString n = values.value(QStringLiteral("mosaic_normalisation"), QStringLiteral("gains")).toString();
+  o.normalisation = n == QLatin1String("none")    ? MosaicNormalisation::kNone
+                    : n == QLatin1String("model") ? MosaicNormalisation::kModel
+                                                  : MosaicNormalisation::kModelAndGains;
+  return o;
 }
 
 FrontEndOptions FrontEndOptionsFrom(const ParameterValues& values) {

@@ -1,6 +1,7 @@
 // The inspection's parameters bound to the core options structs: the
 // parameter table (DefaultParameterTable, declared in parameters.h) lists
-// fields of AdjustmentOptions and MappingOptions under the structs' own
+// fields of AdjustmentOptions, MappingOptions, FrontEndOptions and
+// MosaicOptions under the structs' own
 // names and with the structs' defaults; the validator copies the values into
 // the structs and calls their Check(). The keys below are also what project
 // files store.
@@ -10,6 +11,7 @@
 
 #include "adjust/adjust_options.h"
 #include "mapping/mapping_options.h"
+#include "mosaic/photomosaic.h"
 #include "ui/session/parameters.h"
 #include "vision/vision_options.h"
 
@@ -28,6 +30,9 @@ AdjustmentOptions AdjustmentOptionsFrom(const ParameterValues& values);
 MappingOptions MappingOptionsFrom(const ParameterValues& values);
 // The visual front end's options (group "Visual front end", keys "fe_...").
 FrontEndOptions FrontEndOptionsFrom(const ParameterValues& values);
+// The photomosaic's options (group "Photomosaic", keys "mosaic_<field>";
+// the other fields keep MosaicOptions' defaults).
+MosaicOptions MosaicOptionsFrom(const ParameterValues& values);
 
 // A canonical text of the values of one stage, for caching results per
 // parameter set. For the adjustment, fields the model ignores are left out

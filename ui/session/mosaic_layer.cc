@@ -1,6 +1,7 @@
 #include "ui/session/mosaic_layer.h"
 
 #include <filesystem>
+#include <memory>
 #include <system_error>
 
 #include "adjust/adjust_result.h"
@@ -45,6 +46,17 @@ MosaicLayer LoadMosaicLayer(const std::string& folder) {
   const std::string results = fs::absolute(fs::path(*dir), ec).parent_path().string();
   const MosaicSources sources = LocateMosaicSources(results);
   layer.x_gM = Pose::FromVector(ReadAdjustmentResult(sources.adjustment_dir).x_gM);
+  const fs::path ply = fs::path(*dir) / kMosaicPly;
+  if (fs::is_regular_file(ply, ec)) {
+    auto coloured = std::make_shared<TriangleMesh>(LoadMesh(ply.string(), read));
+    for (const char* c : {"red", "green", "blue"}) {
+      if (!coloured->FindScalar(c)) {
+        throw InputError({ply.string(), 0, 0, c}, "a photomosaic needs per-vertex " + std::string(c));
+      }
+    }
+    layer.ply = ply.string();
+    layer.coloured = std::move(coloured);
+  }
   return layer;
 }
 
