@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "base/error.h"
+#include "base/json.h"
 
 namespace hull::ui {
 
@@ -117,6 +118,12 @@ ProjectData ReadProject(const QString& path, const ParameterTable& table, const 
                      "cannot open the project file: " + file.errorString().toStdString());
   }
   const QByteArray text = file.readAll();
+  // The syntax is checked by HullInspect's own JSON layer first, as strictly
+  // as survey.json: Qt's parser accepts what JSON does not (".5"), keeps the
+  // last of duplicate keys silently, and Qt 5.15 leaks the first value of a
+  // duplicate key when it is an array or object (found by fuzzing:
+  // tests/fuzz/regressions/project). Refused here with line and column.
+  (void)Json::Parse(std::string_view(text.constData(), static_cast<std::size_t>(text.size())), path.toStdString());
   QJsonParseError parse_error;
   const QJsonDocument doc = QJsonDocument::fromJson(text, &parse_error);
   if (parse_error.error != QJsonParseError::NoError) {
