@@ -334,6 +334,12 @@ class UiLogicTest : public QObject {
     w = error_of(
         "{\"format\": \"hullinspect-project\", \"version\": 1, \"view\": {\"camera\": {\"position\": [1, 2]}}}");
     QCOMPARE(w.field, std::string("view.camera.position"));
+
+    // A placement this version does not know is refused, not silently
+    // replaced by the best available one when the project opens.
+    w = error_of("{\"format\": \"hullinspect-project\", \"version\": 1,\n \"model_placement\": \"gues\"}");
+    QCOMPARE(w.field, std::string("model_placement"));
+    QCOMPARE(w.line, 2);
   }
 
   // The fuzz seeds are what the writer writes today (HI_WRITE_PROJECT_SEEDS=1

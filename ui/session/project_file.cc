@@ -13,6 +13,7 @@
 
 #include "base/error.h"
 #include "base/json.h"
+#include "ui/session/model_placement.h"
 
 namespace hull::ui {
 
@@ -172,6 +173,16 @@ ProjectData ReadProject(const QString& path, const ParameterTable& table, const 
   }
 
   p.placement = r.String(root, {QStringLiteral("model_placement")});
+  ModelPlacement placement;
+  if (!p.placement.isEmpty() && !ModelPlacementFromKey(p.placement.toStdString(), &placement)) {
+    QStringList keys;
+    for (ModelPlacement c :
+         {ModelPlacement::kIdentity, ModelPlacement::kGuess, ModelPlacement::kTruth, ModelPlacement::kAdjusted}) {
+      keys << QString::fromLatin1(ModelPlacementKey(c));
+    }
+    r.Fail({QStringLiteral("model_placement")},
+           QStringLiteral("expected one of: %1").arg(keys.join(QStringLiteral(", "))));
+  }
 
   const QJsonObject view = r.Object(root, {QStringLiteral("view")}, false);
   const QJsonObject layers = r.Object(view, {QStringLiteral("view"), QStringLiteral("layers")}, false);
