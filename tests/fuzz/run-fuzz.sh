@@ -23,7 +23,7 @@ jobs=${FUZZ_JOBS:-1}
 
 all=(survey_json survey_nav survey_odometry survey_dvl survey_features survey_landmarks survey_truth
      sonar_json sonar_controls sonar_measurements
-     mesh_stl mesh_ply mesh_obj mesh_off mesh_gz mesh_gltf mesh_step image json)
+     mesh_stl mesh_ply mesh_obj mesh_off mesh_gz mesh_gltf mesh_step image json project)
 harnesses=("$@")
 [ ${#harnesses[@]} -gt 0 ] || harnesses=("${all[@]}")
 
@@ -53,6 +53,7 @@ dict() {
     json | survey_json | sonar_json) echo "-dict=$src/dict/json.dict" ;;
     survey_* | sonar_*) echo "-dict=$src/dict/csv.dict" ;;
     mesh_stl | mesh_ply | mesh_obj | mesh_off) echo "-dict=$src/dict/mesh.dict" ;;
+    project) echo "-dict=$src/dict/project.dict" ;;
   esac
 }
 

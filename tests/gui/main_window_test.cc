@@ -252,11 +252,36 @@ class MainWindowTest : public QObject {
     QCOMPARE(win.errors.size(), std::size_t(5));
     QVERIFY2(win.errors[4].message.contains(QStringLiteral("p.hiproj, line")), qPrintable(win.errors[4].message));
 
+    // Projects whose JSON is fine but a field is not, and one with a key
+    // twice (tests/fuzz/regressions/project): the message names the file and
+    // the field or key; the parameters on screen stay as they were.
+    const ParameterValues parameters_before = win.w.parameterPanel()->values();
+    auto open_project = [&](const QByteArray& text) {
+      QVERIFY(p.open(QIODevice::WriteOnly | QIODevice::Truncate));
+      p.write(text);
+      p.close();
+      win.w.OpenPaths({project});
+    };
+    open_project(
+        "{\"format\": \"hullinspect-project\", \"version\": 1,\n \"inputs\": {\"mesh\": \"hull.ply\"},\n"
+        " \"parameters\": {\"sigma1\": \"big\"}}\n");
+    QCOMPARE(win.errors.size(), std::size_t(6));
+    QVERIFY2(win.errors[5].message.contains(QStringLiteral("p.hiproj, line 3")) &&
+                 win.errors[5].message.contains(QStringLiteral("parameters.sigma1")),
+             qPrintable(win.errors[5].message));
+    open_project(
+        "{\"format\": \"hullinspect-project\", \"version\": 1,\n \"view\": {\"layers\": [1], \"layers\": [2]}}\n");
+    QCOMPARE(win.errors.size(), std::size_t(7));
+    QVERIFY2(win.errors[6].message.contains(QStringLiteral("p.hiproj, line 2")) &&
+                 win.errors[6].message.contains(QStringLiteral("duplicate key \"layers\"")),
+             qPrintable(win.errors[6].message));
+    QCOMPARE(win.w.parameterPanel()->values(), parameters_before);
+
     // Still the demo on screen, and the window still opens things.
     QCOMPARE(win.w.session()->mesh()->path, mesh_before);
     win.w.OpenPaths({LoadDemo().mesh_path});
     HI_WAIT_IDLE(win.w.jobs(), 30000);
-    QCOMPARE(win.errors.size(), std::size_t(5));
+    QCOMPARE(win.errors.size(), std::size_t(7));
   }
 
   void projectsRoundTripWithoutRerunningAnything() {

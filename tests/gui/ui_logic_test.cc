@@ -7,6 +7,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "base/error.h"
 #include "geometry/mesh_index.h"
@@ -41,6 +44,52 @@ void WriteText(const QString& path, const QByteArray& text) {
   QFile f(path);
   QVERIFY(f.open(QIODevice::WriteOnly));
   f.write(text);
+}
+
+QByteArray ReadText(const QString& path) {
+  QFile f(path);
+  return f.open(QIODevice::ReadOnly) ? f.readAll() : QByteArray();
+}
+
+// The project fuzz harness's seeds (tests/fuzz/corpus/project): projects as
+// the GUI saves them, each relative to the folder `dir` of its file.
+std::vector<std::pair<QString, ProjectData>> ProjectSeeds(const QString& dir) {
+  std::vector<std::pair<QString, ProjectData>> seeds;
+  ProjectData empty;  // "Save project" with nothing open
+  empty.parameters = DefaultValues(DefaultParameterTable());
+  seeds.emplace_back(QStringLiteral("defaults.hiproj"), empty);
+
+  ProjectData p = empty;  // an inspection: inputs below the project, view and parameters changed
+  p.mesh_path = dir + QStringLiteral("/models/hull.ply");
+  p.bundle_path = dir + QStringLiteral("/surveys/day-1");
+  p.parameters.insert(QStringLiteral("sigma1"), 0.035);
+  p.parameters.insert(QStringLiteral("dbscan_min_points"), 7);
+  p.parameters.insert(QStringLiteral("fe_window"), 80.0);
+  p.placement = QStringLiteral("guess");
+  p.scene.visible[SceneLayer::kDvlHits] = false;
+  p.scene.visible[SceneLayer::kFrusta] = true;
+  p.scene.hull_edges = true;
+  p.scene.colouring = LandmarkColouring::kDeviation;
+  p.scene.auto_range = false;
+  p.scene.range_min = -0.02;
+  p.scene.range_max = 0.2;
+  p.scene.frustum_stride = 4;
+  p.camera = CameraState{{{1.5, -2, 12.25}}, {{0.5, 0.25, 9}}, {{0, 1, 0}}, 25.0};
+  seeds.emplace_back(QStringLiteral("inspection.hiproj"), p);
+
+  ProjectData q = empty;  // saved inside the survey folder, the mesh beside it; every layer off
+  q.mesh_path = QDir::cleanPath(dir + QStringLiteral("/../cad/hull.stl"));
+  q.bundle_path = dir;
+  q.parameters.insert(QStringLiteral("model"), QStringLiteral("naive"));
+  q.parameters.insert(QStringLiteral("lookup"), QStringLiteral("nearest-vertex"));
+  q.parameters.insert(QStringLiteral("fe_clahe"), QStringLiteral("off"));
+  q.parameters.insert(QStringLiteral("rejection_rounds"), 0);
+  q.placement = QStringLiteral("adjusted");
+  for (SceneLayer layer : AllSceneLayers()) q.scene.visible[layer] = false;
+  q.scene.frustum_stride = 1;
+  q.camera = CameraState{{{0, 0, -30}}, {{0, 0, 0}}, {{1, 0, 0}}, 60.0};
+  seeds.emplace_back(QStringLiteral("survey-folder.hiproj"), q);
+  return seeds;
 }
 
 }  // namespace
@@ -285,6 +334,80 @@ class UiLogicTest : public QObject {
     w = error_of(
         "{\"format\": \"hullinspect-project\", \"version\": 1, \"view\": {\"camera\": {\"position\": [1, 2]}}}");
     QCOMPARE(w.field, std::string("view.camera.position"));
+
+    // A placement this version does not know is refused, not silently
+    // replaced by the best available one when the project opens.
+    w = error_of("{\"format\": \"hullinspect-project\", \"version\": 1,\n \"model_placement\": \"gues\"}");
+    QCOMPARE(w.field, std::string("model_placement"));
+    QCOMPARE(w.line, 2);
+  }
+
+  // The fuzz seeds are what the writer writes today (HI_WRITE_PROJECT_SEEDS=1
+  // rewrites them after a format change), and each reads back to its data.
+  void projectFuzzSeedsAreWhatTheGuiWrites() {
+    const QString corpus = QStringLiteral(HI_SOURCE_DIR "/tests/fuzz/corpus/project/");
+    const QString dir = QStringLiteral("/data/job-17");
+    const bool rewrite = qEnvironmentVariableIsSet("HI_WRITE_PROJECT_SEEDS");
+    QTemporaryDir tmp;
+    for (const auto& [name, p] : ProjectSeeds(dir)) {
+      const QByteArray json = ProjectToJson(p, dir);
+      if (rewrite) WriteText(corpus + name, json);
+      QVERIFY2(ReadText(corpus + name) == json, qPrintable(name + QStringLiteral(" differs from ProjectToJson")));
+      // Read from a folder of its own: the inputs resolve against it.
+      const QString file = tmp.filePath(name);
+      WriteText(file, json);
+      const ProjectData q = ReadProject(file, DefaultParameterTable(), CheckDefaultParameters);
+      auto moved = [&](const QString& path) {
+        return path.isEmpty() ? path
+                              : QDir::cleanPath(tmp.path() + QLatin1Char('/') + QDir(dir).relativeFilePath(path));
+      };
+      QCOMPARE(q.mesh_path, moved(p.mesh_path));
+      QCOMPARE(q.bundle_path, moved(p.bundle_path));
+      QCOMPARE(q.parameters, p.parameters);
+      QCOMPARE(q.placement, p.placement);
+      QVERIFY(q.scene == p.scene);
+      QCOMPARE(q.camera.has_value(), p.camera.has_value());
+    }
+  }
+
+  // Inputs the fuzz harness found (tests/fuzz/regressions/project): refused
+  // with the file, line and column, never read.
+  void projectFuzzRegressions() {
+    const QString dir = QStringLiteral(HI_SOURCE_DIR "/tests/fuzz/regressions/project/");
+    // Qt 5.15's parser leaked the first value of a duplicate key when it is
+    // an array or object (and kept the second silently).
+    const QString duplicate = dir + QStringLiteral("duplicate-array-key.hiproj");
+    try {
+      ReadProject(duplicate, DefaultParameterTable(), CheckDefaultParameters);
+      QFAIL("a project with a duplicate key was read");
+    } catch (const hull::InputError& e) {
+      QCOMPARE(QString::fromStdString(e.where().file), duplicate);
+      QCOMPARE(e.where().line, 9);
+      QVERIFY(e.where().column > 0);
+      QVERIFY2(std::string(e.what()).find("duplicate key \"view_up\"") != std::string::npos, e.what());
+    }
+  }
+
+  // JSON that Qt's parser accepts but JSON does not is refused like any
+  // other malformed file (the same strict parser as survey.json).
+  void projectsAreStrictJson() {
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("p.hiproj"));
+    auto refused_at_line = [&](const QByteArray& text) {
+      WriteText(file, text);
+      try {
+        ReadProject(file, DefaultParameterTable(), CheckDefaultParameters);
+      } catch (const hull::InputError& e) {
+        return QString::fromStdString(e.where().file) == file ? e.where().line : -1;
+      }
+      return 0;
+    };
+    QCOMPARE(refused_at_line(
+                 "{\"format\": \"hullinspect-project\",\n \"version\": 1,\n \"view\": {\"frustum_stride\": .5}}"),
+             3);
+    QCOMPARE(refused_at_line("{\"format\": \"hullinspect-project\", \"version\": 1,\n\"inputs\": {},\n\"inputs\": {}}"),
+             3);
+    QCOMPARE(refused_at_line("{\"format\": \"hullinspect-project\", \"version\": 1}"), 0);
   }
 
   void savingReplacesTheFileWhole() {

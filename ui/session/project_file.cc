@@ -12,6 +12,8 @@
 #include <stdexcept>
 
 #include "base/error.h"
+#include "base/json.h"
+#include "ui/session/model_placement.h"
 
 namespace hull::ui {
 
@@ -117,6 +119,12 @@ ProjectData ReadProject(const QString& path, const ParameterTable& table, const 
                      "cannot open the project file: " + file.errorString().toStdString());
   }
   const QByteArray text = file.readAll();
+  // The syntax is checked by HullInspect's own JSON layer first, as strictly
+  // as survey.json: Qt's parser accepts what JSON does not (".5"), keeps the
+  // last of duplicate keys silently, and Qt 5.15 leaks the first value of a
+  // duplicate key when it is an array or object (found by fuzzing:
+  // tests/fuzz/regressions/project). Refused here with line and column.
+  (void)Json::Parse(std::string_view(text.constData(), static_cast<std::size_t>(text.size())), path.toStdString());
   QJsonParseError parse_error;
   const QJsonDocument doc = QJsonDocument::fromJson(text, &parse_error);
   if (parse_error.error != QJsonParseError::NoError) {
@@ -165,6 +173,16 @@ ProjectData ReadProject(const QString& path, const ParameterTable& table, const 
   }
 
   p.placement = r.String(root, {QStringLiteral("model_placement")});
+  ModelPlacement placement;
+  if (!p.placement.isEmpty() && !ModelPlacementFromKey(p.placement.toStdString(), &placement)) {
+    QStringList keys;
+    for (ModelPlacement c :
+         {ModelPlacement::kIdentity, ModelPlacement::kGuess, ModelPlacement::kTruth, ModelPlacement::kAdjusted}) {
+      keys << QString::fromLatin1(ModelPlacementKey(c));
+    }
+    r.Fail({QStringLiteral("model_placement")},
+           QStringLiteral("expected one of: %1").arg(keys.join(QStringLiteral(", "))));
+  }
 
   const QJsonObject view = r.Object(root, {QStringLiteral("view")}, false);
   const QJsonObject layers = r.Object(view, {QStringLiteral("view"), QStringLiteral("layers")}, false);

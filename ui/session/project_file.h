@@ -17,7 +17,7 @@ struct ProjectData {
   QString mesh_path;    // absolute ("" when none)
   QString bundle_path;  // absolute ("" when none)
   ParameterValues parameters;
-  QString placement;  // ModelPlacement key ("" when unspecified)
+  QString placement;  // ModelPlacement key (ui/session/model_placement.h; "" when unspecified)
   SceneOptions scene;
   std::optional<CameraState> camera;
 };

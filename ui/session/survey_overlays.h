@@ -17,6 +17,7 @@
 
 #include "geometry/pose.h"
 #include "survey/survey.h"
+#include "ui/session/model_placement.h"
 
 namespace hull::ui {
 
@@ -84,12 +85,6 @@ struct SurveyOverlays {
 
 SurveyOverlays ComputeSurveyOverlays(const SurveyBundle& bundle);
 
-// Where the CAD model is placed in g, and from what. kAdjusted (the bundle
-// adjustment's x_gM) exists only in a Session holding an adjustment.
-enum class ModelPlacement { kIdentity, kGuess, kTruth, kAdjusted };
-const char* ModelPlacementKey(ModelPlacement p);  // "identity", "guess", "truth", "adjusted"
-const char* ModelPlacementLabel(ModelPlacement p);
-bool ModelPlacementFromKey(const std::string& key, ModelPlacement* p);
 // Placements the bundle offers (identity always; the guess and the truth when
 // present), best first: truth, guess, identity. Without a bundle: identity.
 std::vector<ModelPlacement> AvailablePlacements(const SurveyBundle* bundle);
