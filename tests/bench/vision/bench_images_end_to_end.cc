@@ -13,7 +13,10 @@
 // truth in M without any object being wrong.
 //
 //   bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N]
-//                           [--tau M] [--threads N] [--keep DIR]
+//                           [--tau M] [--threads N] [--keep DIR [--reuse]]
+// --keep DIR keeps both bundles (DIR/given, DIR/images; the front end's
+// features.csv and match-graph.csv written into DIR/images); --reuse then
+// starts from them (no rendering, no front end) to score other options.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -138,7 +141,10 @@ RunFigures RunOne(const std::string& bundle_dir, const PipelineOptions& o, doubl
   FrontEndOptions fe;
   fe.threads = o.adjustment.num_threads;
   const PipelineInputs in = LoadPipelineInputs(bundle_dir, "", 1.0, &quiet, fe);
-  if (in.front_end) f.front_end_seconds = in.front_end->seconds;
+  if (in.front_end) {
+    f.front_end_seconds = in.front_end->seconds;
+    WriteFrontEndResult(*in.front_end, in.bundle.manifest, (fs::path(bundle_dir) / "features.csv").string());
+  }
   f.tracks = in.image_tracks;
   if (f.tracks) std::printf("%s", f.tracks->ToString().c_str());
   const PipelineResult r = RunPipeline(in, o, quiet);
@@ -157,7 +163,9 @@ RunFigures RunOne(const std::string& bundle_dir, const PipelineOptions& o, doubl
 }  // namespace
 
 int main(int argc, char** argv) {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // figures as they come, also into a file
   std::string preset = "demo", keep;
+  bool reuse = false;
   double camera_scale = 0.5, tau = 0.06, min_height = 0.06;
   int seed = 1, threads = 2;
   for (int i = 1; i < argc; ++i) {
@@ -181,10 +189,12 @@ int main(int argc, char** argv) {
       threads = std::atoi(value().c_str());
     } else if (a == "--keep") {
       keep = value();
+    } else if (a == "--reuse") {
+      reuse = true;
     } else {
       std::fprintf(stderr,
                    "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
-                   "[--threads N] [--keep DIR]\n");
+                   "[--threads N] [--keep DIR [--reuse]]\n");
       return 2;
     }
   }
@@ -193,21 +203,29 @@ int main(int argc, char** argv) {
   fs::create_directories(root);
   const std::string given = (fs::path(root) / "given").string(), images = (fs::path(root) / "images").string();
 
-  SurveySimulationOptions so = SurveyPreset(preset);
-  so.seed = static_cast<std::uint64_t>(seed);
-  so.camera_scale = camera_scale;
-  so.images = true;
-  NullProgress quiet;
-  double t = Now();
-  const SimulatedSurvey s = SimulateSurvey(so, quiet);
-  WriteSimulatedSurvey(s, given, false, quiet);
-  const double render = Now() - t;
-  fs::remove_all(images);
-  fs::copy(given, images, fs::copy_options::recursive);
-  fs::remove(fs::path(images) / "features.csv");
-  std::printf("%s, seed %d, camera scale %.2f (%dx%d): simulated and rendered %d images in %.1f s\n", preset.c_str(),
-              seed, camera_scale, s.bundle.manifest.camera.width, s.bundle.manifest.camera.height,
-              s.bundle.images ? s.bundle.images->present() : 0, render);
+  if (reuse && keep.empty()) {
+    std::fprintf(stderr, "--reuse needs --keep DIR\n");
+    return 2;
+  }
+  if (reuse && fs::exists(fs::path(images) / "features.csv")) {
+    std::printf("%s: reusing the bundles in %s\n", preset.c_str(), root.c_str());
+  } else {
+    SurveySimulationOptions so = SurveyPreset(preset);
+    so.seed = static_cast<std::uint64_t>(seed);
+    so.camera_scale = camera_scale;
+    so.images = true;
+    NullProgress quiet;
+    const double t = Now();
+    const SimulatedSurvey s = SimulateSurvey(so, quiet);
+    WriteSimulatedSurvey(s, given, false, quiet);
+    const double render = Now() - t;
+    fs::remove_all(images);
+    fs::copy(given, images, fs::copy_options::recursive);
+    fs::remove(fs::path(images) / "features.csv");
+    std::printf("%s, seed %d, camera scale %.2f (%dx%d): simulated and rendered %d images in %.1f s\n", preset.c_str(),
+                seed, camera_scale, s.bundle.manifest.camera.width, s.bundle.manifest.camera.height,
+                s.bundle.images ? s.bundle.images->present() : 0, render);
+  }
 
   PipelineOptions o;
   o.adjustment.num_threads = threads;
