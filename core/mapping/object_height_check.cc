@@ -185,7 +185,7 @@ std::string ObjectHeightTable(const std::vector<ObjectHeightCheck>& checks, doub
   std::string s =
       "| object | true height | true max in its region | model max | error | model p95 | features: highest, 2nd | "
       "in 2+ shapes, highest | vertices (fused) | detected as |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
-  int considered = 0, within = 0;
+  int considered = 0, within = 0, unmapped = 0, features_within = 0;
   double worst = 0;
   char line[512];
   for (const auto& c : checks) {
@@ -196,15 +196,21 @@ std::string ObjectHeightTable(const std::vector<ObjectHeightCheck>& checks, doub
         c.id.c_str(), c.height, c.true_max, c.model_max, c.error(), c.model_p95, c.features, c.feature_max,
         c.feature_robust_max, c.shaped_max, c.model_vertices, c.fused_vertices, det.empty() ? "-" : det.c_str());
     s += line;
-    if (c.height < min_height) continue;
+    if (c.height < min_height || !std::isfinite(c.true_max)) continue;
     ++considered;
-    const double e = std::isfinite(c.error()) ? std::abs(c.error()) : 1e9;
+    features_within += c.feature_max >= c.true_max - tolerance;
+    if (!std::isfinite(c.model_max)) {
+      ++unmapped;  // no model vertex in its region
+      continue;
+    }
+    const double e = std::abs(c.error());
     within += e <= tolerance;
     worst = std::max(worst, e);
   }
   std::snprintf(line, sizeof line,
-                "objects of at least %.2f m: %d of %d with the model max within %.3f m; worst %.3f m\n", min_height,
-                within, considered, tolerance, worst);
+                "objects of at least %.2f m: %d of %d with the model max within %.3f m of the true max (worst %.3f m; "
+                "%d with no model vertex in their region); the highest feature within %.3f m for %d of them\n",
+                min_height, within, considered, tolerance, worst, unmapped, tolerance, features_within);
   return s + line;
 }
 
