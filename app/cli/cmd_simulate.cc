@@ -62,7 +62,8 @@ options (each overrides the preset):
   --grow N --growth M --remove N --add N
                            the second survey of a pair (same --seed): the
                            first N patches grown by M (default 0.05), the
-                           last N objects removed, N new patches
+                           last N objects at least 0.08 m high removed,
+                           N new patches
   --pixel-sigma PX --dvl-sigma M --feature-density PER_M2 --non-salient FRACTION
   --wrong-matches FRACTION (monocular)
   --servo-bias-deg D --model-pose-error-m M --model-pose-error-deg D

@@ -13,6 +13,7 @@
 
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
+#include "mapping/dbscan.h"
 #include "mapping/mapping_input.h"
 #include "mapping/mapping_options.h"
 
@@ -50,6 +51,14 @@ struct KeyframeShapes {
   std::vector<ShapePoint> points;     // every observed landmark in front of the camera, by landmark index
   std::vector<DetectedShape> shapes;  // clusters that gave at least one triangle, by cluster
 };
+
+// Peak points (with MappingOptions::fusion_keep_peaks, after DBSCAN on the
+// points (x, y, |d|)): a noise point that another point confirms (at least
+// one more within eps, so one wrong match alone stays noise) and that
+// stands above a cluster (a clustered point within eps of it on the image
+// plane (x, y) has a lower |d|) joins the cluster of the nearest such
+// point. Labels of clustered points do not change.
+void AdmitPeakPoints(const std::vector<Eigen::Vector3d>& points, double eps, DbscanResult& db);
 
 // Algorithm 1 for one keyframe (index into input.keyframes). options.Check()
 // is the caller's business.

@@ -268,9 +268,11 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   truth.x_gM = x_gM.ToVector();
   truth.x_s_cT = x_s_cT.ToVector();
   truth.objects = PlaceObjects(o, cad, axes, fmin, umin, s_centre, keys, x_gM, man, x_s_cT, rng);
-  if (o.changes.any()) ApplyFoulingChanges(truth.objects, cad, axes.forward, o.changes);
+  std::vector<std::size_t> seed_index(truth.objects.size());
+  for (std::size_t i = 0; i < seed_index.size(); ++i) seed_index[i] = i;
+  if (o.changes.any()) seed_index = ApplyFoulingChanges(truth.objects, cad, axes.forward, o.changes);
   for (std::size_t i = 0; i < truth.objects.size(); ++i) {
-    out.object_meshes.push_back(MakeObjectMesh(truth.objects[i], o.seed * 1000003 + i));
+    out.object_meshes.push_back(MakeObjectMesh(truth.objects[i], o.seed * 1000003 + seed_index[i]));
   }
   std::vector<int> face_object;
   const TriangleMesh surface = TrueSurfaceMesh(out.cad, out.object_meshes, &face_object);

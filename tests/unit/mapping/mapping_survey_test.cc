@@ -20,6 +20,7 @@
 #include "base/json.h"
 #include "geometry/mesh_io.h"
 #include "mapping/mapper.h"
+#include "mapping/object_height_check.h"
 #include "mapping/shape_fusion.h"
 #include "mapping/surface_clip.h"
 #include "simulate/survey_simulator.h"
@@ -460,6 +461,44 @@ void WritesTheResultsFolder(const std::string& preset) {
   EXPECT_EQ(summary.Get("version")->as_number(), 1);
 }
 
+// Issue 12, part 1, per true object (not per detected object: on the
+// demo's strip of touching lumps a detected object holds several lumps or
+// part of one): the fused model's max height in each true object's region
+// against its true height and against the adjusted features there.
+void PeaksPerTrueObject(const std::string& preset) {
+  const Case& c = GetCase(preset);
+  const MappingResult& r = Map(preset, Params::kPaper, 0.0);
+  const MeshIndex cad(c.survey.cad);
+  const auto checks =
+      CheckObjectHeights(r.model, r.objects, MappingInputFromAdjustment(c.adjustment, c.survey.bundle), c.est_to_true,
+                         c.survey.bundle.truth->objects, c.survey.object_meshes, cad, &r.keyframes);
+  std::printf("[%s, paper eps/alpha, tau 0] per true object:\n%s", preset.c_str(),
+              ObjectHeightTable(checks, 0.06, 0.01).c_str());
+  int isolated = 0;
+  for (const auto& k : checks) {
+    if (!std::isfinite(k.true_max) || k.height < 0.06) continue;
+    // Nothing rises above the truth (a wrong match or a merged neighbour
+    // would): the model's max is at most 1 cm above the true max.
+    if (std::isfinite(k.model_max)) {
+      EXPECT_LE(k.model_max, k.true_max + 0.01) << k.id;
+    }
+    // The top features reach the shapes: the highest feature in at least
+    // two keyframes' shapes is at least the features' robust maximum (the
+    // second highest). DBSCAN's |d| axis used to cut a narrow top off as
+    // noise (the demo's 0.18 m strip-8: features at 0.174 and 0.159 m, its
+    // shapes stopped at 0.129 m).
+    if (std::isfinite(k.feature_robust_max) && k.feature_robust_max > r.options.object_min_height) {
+      EXPECT_GE(k.shaped_max, k.feature_robust_max) << k.id;
+    }
+    // Isolated objects (the cylinder, the box, the 0.15 m patch) within 1 cm.
+    if (k.id == "cyl-1" || k.id == "box-1" || k.id == "patch-1") {
+      ++isolated;
+      EXPECT_NEAR(k.model_max, k.true_max, 0.01) << k.id;
+    }
+  }
+  EXPECT_EQ(isolated, 3);
+}
+
 // Each case below runs in its own process under ctest (gtest_discover_tests)
 // and simulates and adjusts its preset once: a few cases, each checking
 // several things, keep the suite short.
@@ -473,6 +512,7 @@ TEST_P(MappingSurvey, DetectionAtTauZero) {
 TEST_P(MappingSurvey, HeightsAndFlatness) {
   CylinderHeightOnTheRemeshedModel(GetParam());
   ModelStaysOnTheCadAwayFromObjects(GetParam());
+  PeaksPerTrueObject(GetParam());
 }
 
 TEST_P(MappingSurvey, HigherTau) {

@@ -109,5 +109,27 @@ TEST_F(ForeignObjects, FoulingChangesGrowRemoveAndAdd) {
   EXPECT_THROW(ApplyFoulingChanges(objs, index_, Eigen::Vector3d::UnitX(), c), OptionError);
 }
 
+TEST_F(ForeignObjects, RemovalSkipsObjectsTooLowToBeDetectedAndKeepsShapes) {
+  // The last object placed is a 0.06 m patch (the demo's patch-3, at the
+  // limit of detection): the last one at least remove_min_height high goes.
+  std::vector<TrueObject> objs = {
+      PlaceObject(index_, "patch-1", ObjectKind::kPatch, {-2, 0, 0}, 0.15, 0.10),
+      PlaceObject(index_, "cyl-1", ObjectKind::kCylinder, {0, 0, 0}, 0.15, 0.11),
+      PlaceObject(index_, "patch-2", ObjectKind::kPatch, {2, 0, 0}, 0.10, 0.06),
+  };
+  FoulingChanges c;
+  c.remove = 1;
+  c.add = 1;
+  const std::vector<std::size_t> seed = ApplyFoulingChanges(objs, index_, Eigen::Vector3d::UnitX(), c);
+  ASSERT_EQ(objs.size(), 3u);
+  EXPECT_EQ(objs[0].id, "patch-1");
+  EXPECT_EQ(objs[1].id, "patch-2");  // kept: too low to be removed
+  EXPECT_EQ(objs[2].id, "new-1");
+  // Each kept object is seeded by its index before the changes, so its shape does not change.
+  EXPECT_EQ(seed, (std::vector<std::size_t>{0, 2, 3}));
+  c.remove_min_height = -1;
+  EXPECT_THROW(ApplyFoulingChanges(objs, index_, Eigen::Vector3d::UnitX(), c), OptionError);
+}
+
 }  // namespace
 }  // namespace hull
