@@ -113,10 +113,8 @@ int RunFeatures(const CommandArgs& argv) {
   if (o.loops.enabled) {
     int loop_inliers = 0;
     for (const auto& p : r.pairs) loop_inliers += p.loop && p.accepted ? p.inliers : 0;
-    std::printf(
-        "loop closures: %zu pairs with overlapping footprints considered, %d tried, %d accepted (%d inliers); "
-        "%.1f s\n",
-        r.loop_pairs_considered, r.loop_pairs_tried, r.loop_pairs_accepted, loop_inliers, r.loop_seconds);
+    std::printf("loop closures: overlap predicted for %zu keyframe pairs, %d tried, %d accepted (%d inliers); %.1f s\n",
+                r.loop_pairs_considered, r.loop_pairs_tried, r.loop_pairs_accepted, loop_inliers, r.loop_seconds);
   }
   std::printf("%d landmarks, %zu observations; %d merges refused, %d short tracks dropped; %.1f s\n", r.landmarks,
               r.features.size(), r.refused_merges, r.dropped_tracks, r.seconds);
