@@ -167,8 +167,8 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
     for (const LoopCandidate& c : candidates) {
       const double distance = (lk[c.b].x_g_cT.translation() - lk[c.a].x_g_cT.translation()).norm();
       pairs.push_back({c.a, c.b, true, c.overlap,
-                       LoopMatchingOptions(o.temporal, o.loops, man.noise, rig.top.fx, lk[c.a].footprint.depth,
-                                           c.seconds, c.path, distance)});
+                       LoopMatchingOptions(o.temporal, o.loops, man.noise, rig.top.fx, lk[c.a].footprint, c.seconds,
+                                           c.path, distance)});
     }
     matches.resize(pairs.size());
     SharedProgress loop_progress(progress, 0.85, 0.95, static_cast<int>(candidates.size()));

@@ -13,12 +13,15 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 constexpr std::size_t kMinFootprintPoints = 10;
 
-double MedianDepth(const std::vector<Eigen::Vector3d>& points) {
+// Median, smallest and largest depth of the points.
+void SetDepths(KeyframeFootprint& f) {
   std::vector<double> z;
-  z.reserve(points.size());
-  for (const auto& p : points) z.push_back(p.z());
-  std::nth_element(z.begin(), z.begin() + static_cast<std::ptrdiff_t>(z.size() / 2), z.end());
-  return z[z.size() / 2];
+  z.reserve(f.points.size());
+  for (const auto& p : f.points) z.push_back(p.z());
+  std::sort(z.begin(), z.end());
+  f.depth = z[z.size() / 2];
+  f.min_depth = z.front();
+  f.max_depth = z.back();
 }
 
 }  // namespace
@@ -30,7 +33,7 @@ KeyframeFootprint StereoFootprint(const KeyframeView& view, int max_points) {
   const std::size_t stride = (n + static_cast<std::size_t>(max_points) - 1) / static_cast<std::size_t>(max_points);
   for (std::size_t k = 0; k < n; k += stride) f.points.push_back(view.stereo[k].p_top);
   f.source = KeyframeFootprint::Source::kStereo;
-  f.depth = MedianDepth(f.points);
+  SetDepths(f);
   return f;
 }
 
@@ -79,7 +82,7 @@ KeyframeFootprint DvlFootprint(const SurveyManifest& man, const DvlRecord& dvl, 
     return f;
   }
   f.source = KeyframeFootprint::Source::kDvl;
-  f.depth = MedianDepth(f.points);
+  SetDepths(f);
   return f;
 }
 
@@ -172,12 +175,13 @@ std::vector<LoopCandidate> FindLoopCandidates(const std::vector<LoopKeyframe>& k
 }
 
 TemporalOptions LoopMatchingOptions(const TemporalOptions& base, const LoopOptions& loop, const NoiseModel& noise,
-                                    double focal_px, double depth, double seconds, double path, double distance) {
+                                    double focal_px, const KeyframeFootprint& a, double seconds, double path,
+                                    double distance) {
   TemporalOptions o = base;
   const double sigma_rot = noise.odometry_rotation_rate * std::abs(seconds);
   const double sigma_pos = noise.odometry_translation_rate * std::abs(seconds) + 0.5 * sigma_rot * std::abs(path);
   const double k = loop.drift_sigmas;
-  const double z = std::max(depth, 1e-3);
+  const double z = std::max(a.depth, 1e-3);
   o.window = std::min(loop.max_window, base.window + k * focal_px * (sigma_pos / z + sigma_rot));
   o.window = std::max(o.window, base.window);
   o.max_rotation_error_deg = std::min(180.0, base.max_rotation_error_deg + k * sigma_rot / kDeg);
@@ -187,6 +191,14 @@ TemporalOptions LoopMatchingOptions(const TemporalOptions& base, const LoopOptio
         std::min(180.0, base.max_direction_error_deg + std::atan(k * sigma_pos / distance) / kDeg);
   }
   o.min_inliers = loop.min_inliers;
+  if (!a.empty()) {
+    const double near = std::max(base.mono_min_depth, a.min_depth / 1.5);
+    const double far = std::min(base.mono_max_depth, a.max_depth * 1.5);
+    if (near < far) {
+      o.mono_min_depth = near;
+      o.mono_max_depth = far;
+    }
+  }
   return o;
 }
 

@@ -32,6 +32,7 @@ struct KeyframeFootprint {
   Eigen::Vector3d centre_g = Eigen::Vector3d::Zero();  // mean of the points in g (prior pose)
   double radius = 0;                                   // largest distance of a point from centre_g (m)
   double depth = 0;                                    // median camera-frame z of the points (m)
+  double min_depth = 0, max_depth = 0;                 // their smallest and largest z (m)
   bool empty() const { return points.empty(); }
 };
 
@@ -91,8 +92,13 @@ std::vector<LoopCandidate> FindLoopCandidates(const std::vector<LoopKeyframe>& k
 // / depth + sigma_rot) px (at most max_window), the rotation tolerance by
 // drift_sigmas * sigma_rot, the translation tolerance by drift_sigmas *
 // sigma_pos and the mono direction tolerance by atan(drift_sigmas *
-// sigma_pos / distance); min_inliers is the loop's.
+// sigma_pos / distance); min_inliers is the loop's. `a` is the first
+// keyframe's footprint: its median depth scales the window, and the mono
+// search along the epipolar line is narrowed to its depths / 1.5 .. x 1.5
+// (within the base's mono_min_depth .. mono_max_depth): the grown window
+// around the whole 0.3-6 m segment would cost a search of most of the image.
 TemporalOptions LoopMatchingOptions(const TemporalOptions& base, const LoopOptions& loop, const NoiseModel& noise,
-                                    double focal_px, double depth, double seconds, double path, double distance);
+                                    double focal_px, const KeyframeFootprint& a, double seconds, double path,
+                                    double distance);
 
 }  // namespace hull

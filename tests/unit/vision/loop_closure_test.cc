@@ -54,6 +54,8 @@ TEST(LoopClosure, DvlFootprintLiesOnThePlaneOfTheReturns) {
     EXPECT_TRUE(man.camera.InImage(man.camera.top.Project(p)));
   }
   EXPECT_NEAR(f.depth, 1.5, 1e-9);
+  EXPECT_NEAR(f.min_depth, 1.5, 1e-9);
+  EXPECT_NEAR(f.max_depth, 1.5, 1e-9);
   // One return: the fronto-parallel plane at its depth; none: no footprint.
   DvlRecord one = DvlToPlane(man, 2.0);
   one.range[1] = one.range[2] = one.range[3] = kNoReturn;
@@ -172,24 +174,34 @@ TEST(LoopClosure, WindowAndTolerancesGrowWithTheDrift) {
   TemporalOptions base;
   LoopOptions loop;
   NoiseModel noise;  // 0.005 m/s, 0.000388 rad/s
+  KeyframeFootprint f;
+  f.points = {{0, 0, 1.2}, {0, 0, 1.5}, {0, 0, 1.8}};
+  f.depth = 1.5;
+  f.min_depth = 1.2;
+  f.max_depth = 1.8;
   // No time between them: the neighbours' options, but the loop's inlier count.
-  TemporalOptions same = LoopMatchingOptions(base, loop, noise, 575, 1.5, 0, 0, 1);
+  TemporalOptions same = LoopMatchingOptions(base, loop, noise, 575, f, 0, 0, 1);
   EXPECT_DOUBLE_EQ(same.window, base.window);
   EXPECT_DOUBLE_EQ(same.max_translation_error, base.max_translation_error);
   EXPECT_DOUBLE_EQ(same.max_rotation_error_deg, base.max_rotation_error_deg);
   EXPECT_EQ(same.min_inliers, loop.min_inliers);
   // 40 s and 10 m: rotation 0.01552 rad, position 0.2 + 0.0776 m.
-  const TemporalOptions t = LoopMatchingOptions(base, loop, noise, 575, 1.5, 40, 10, 0.8);
+  const TemporalOptions t = LoopMatchingOptions(base, loop, noise, 575, f, 40, 10, 0.8);
   const double rot = 0.000388 * 40, pos = 0.005 * 40 + 0.5 * rot * 10;
   EXPECT_NEAR(t.window, base.window + 575 * (pos / 1.5 + rot), 1e-9);
   EXPECT_NEAR(t.max_translation_error, base.max_translation_error + pos, 1e-12);
   EXPECT_NEAR(t.max_rotation_error_deg, base.max_rotation_error_deg + rot / kDeg, 1e-9);
   EXPECT_NEAR(t.max_direction_error_deg, base.max_direction_error_deg + std::atan(pos / 0.8) / kDeg, 1e-9);
+  // The mono search segment: the footprint's depths / 1.5 .. x 1.5.
+  EXPECT_NEAR(t.mono_min_depth, 0.8, 1e-12);
+  EXPECT_NEAR(t.mono_max_depth, 2.7, 1e-12);
+  EXPECT_DOUBLE_EQ(LoopMatchingOptions(base, loop, noise, 575, KeyframeFootprint{}, 40, 10, 0.8).mono_max_depth,
+                   base.mono_max_depth);
   // Capped, and scaled by drift_sigmas.
-  EXPECT_DOUBLE_EQ(LoopMatchingOptions(base, loop, noise, 575, 1.5, 400, 100, 0.8).window, loop.max_window);
+  EXPECT_DOUBLE_EQ(LoopMatchingOptions(base, loop, noise, 575, f, 400, 100, 0.8).window, loop.max_window);
   LoopOptions two = loop;
   two.drift_sigmas = 2;
-  EXPECT_NEAR(LoopMatchingOptions(base, two, noise, 575, 1.5, 40, 10, 0.8).max_translation_error,
+  EXPECT_NEAR(LoopMatchingOptions(base, two, noise, 575, f, 40, 10, 0.8).max_translation_error,
               base.max_translation_error + 2 * pos, 1e-12);
 }
 
