@@ -16,7 +16,10 @@ const char* kHelp = R"(usage: hullinspect-cli features BUNDLE [--out FILE] [opti
 The visual front end on a version 2 bundle's images (images/): SIFT with
 CLAHE, top-bottom matches under the rig's epipolar constraint, matches
 between keyframes guided by the navigation (RANSAC: rigid alignment of the
-stereo clouds, or the 5-point essential matrix for mono), tracks with global
+stereo clouds, or the 5-point essential matrix for mono), loop closures
+(keyframes far apart in nav order whose footprints on the hull overlap under
+the navigation prior, e.g. adjacent tracks of a lawnmower, matched with a
+window and tolerances grown by the nav drift between them), tracks with global
 landmark ids. Writes FILE (default BUNDLE/features.csv, the version 1
 contract, which 'run' and 'adjust' then use) and match-graph.csv beside it.
 Prints per-keyframe feature counts and per-pair inlier ratios.
@@ -32,6 +35,11 @@ options:
   --window PX             temporal search radius around the prediction (default 40)
   --neighbours N          match each keyframe with the next N (default 2)
   --ransac-threshold PX   RANSAC inlier threshold (default 2)
+  --no-loops              no loop closures (neighbours in nav order only)
+  --loop-candidates K     loop partners tried per keyframe (default 3)
+  --loop-min-overlap F    predicted footprint overlap of a loop pair (default 0.3)
+  --loop-min-inliers N    RANSAC inliers to accept a loop pair (default 20)
+  --loop-max-window PX    cap of the drift-grown search window (default 200)
   --min-keyframes N       shortest track kept (default 2)
   --threads N             worker threads (default: all cores)
   --quiet
@@ -40,13 +48,14 @@ options:
 }  // namespace
 
 int RunFeatures(const CommandArgs& argv) {
-  Args a(argv, {"force", "no-clahe", "quiet"});
+  Args a(argv, {"force", "no-clahe", "no-loops", "quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
   a.AllowOnly({"out", "force", "max-features", "no-clahe", "clahe-clip", "epipolar-tolerance", "ratio", "window",
-               "neighbours", "ransac-threshold", "min-keyframes", "threads", "quiet"});
+               "neighbours", "ransac-threshold", "no-loops", "loop-candidates", "loop-min-overlap", "loop-min-inliers",
+               "loop-max-window", "min-keyframes", "threads", "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
   const std::string bundle_dir = a.positionals()[0];
   FrontEndOptions o;
@@ -58,6 +67,11 @@ int RunFeatures(const CommandArgs& argv) {
   o.temporal.window = a.GetDouble("window", o.temporal.window);
   o.temporal.neighbours = static_cast<int>(a.GetInt("neighbours", o.temporal.neighbours));
   o.temporal.ransac_threshold = a.GetDouble("ransac-threshold", o.temporal.ransac_threshold);
+  o.loops.enabled = !a.Has("no-loops");
+  o.loops.candidates = static_cast<int>(a.GetInt("loop-candidates", o.loops.candidates));
+  o.loops.min_overlap = a.GetDouble("loop-min-overlap", o.loops.min_overlap);
+  o.loops.min_inliers = static_cast<int>(a.GetInt("loop-min-inliers", o.loops.min_inliers));
+  o.loops.max_window = a.GetDouble("loop-max-window", o.loops.max_window);
   o.tracks.min_keyframes = static_cast<int>(a.GetInt("min-keyframes", o.tracks.min_keyframes));
   o.threads = static_cast<int>(a.GetInt("threads", 0));
   o.Check();
@@ -77,22 +91,30 @@ int RunFeatures(const CommandArgs& argv) {
                 static_cast<int>(k.has_top) + static_cast<int>(k.has_bottom), k.top_features, k.bottom_features,
                 k.stereo_matches, k.tracked);
   }
-  int accepted = 0;
+  int accepted = 0, sequential = 0;
   double ratio_sum = 0;
   for (const auto& p : r.pairs) {
+    if (p.loop) continue;
+    ++sequential;
     if (p.accepted) {
       ++accepted;
       ratio_sum += p.InlierRatio();
     }
   }
-  std::printf("keyframe pairs: %zu matched, %d accepted, mean inlier ratio %.3f\n", r.pairs.size(), accepted,
+  std::printf("keyframe pairs: %d matched, %d accepted, mean inlier ratio %.3f\n", sequential, accepted,
               accepted ? ratio_sum / accepted : 0.0);
   for (const auto& p : r.pairs) {
-    if (!p.accepted) {
+    if (!p.accepted && !p.loop) {
       std::printf("  dropped %lld-%lld (%s): %d putative, %d inliers, %s\n", static_cast<long long>(p.from),
                   static_cast<long long>(p.to), p.stereo ? "rigid" : "essential", p.putative, p.inliers,
                   p.note.c_str());
     }
+  }
+  if (o.loops.enabled) {
+    int loop_inliers = 0;
+    for (const auto& p : r.pairs) loop_inliers += p.loop && p.accepted ? p.inliers : 0;
+    std::printf("loop closures: overlap predicted for %zu keyframe pairs, %d tried, %d accepted (%d inliers); %.1f s\n",
+                r.loop_pairs_considered, r.loop_pairs_tried, r.loop_pairs_accepted, loop_inliers, r.loop_seconds);
   }
   std::printf("%d landmarks, %zu observations; %d merges refused, %d short tracks dropped; %.1f s\n", r.landmarks,
               r.features.size(), r.refused_merges, r.dropped_tracks, r.seconds);

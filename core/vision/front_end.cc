@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <mutex>
 #include <tuple>
+#include <unordered_map>
 
 #include "base/csv.h"
 #include "base/error.h"
@@ -17,6 +18,7 @@
 #include "vision/camera_geometry.h"
 #include "vision/feature_detection.h"
 #include "vision/feature_tracks.h"
+#include "vision/loop_closure.h"
 #include "vision/stereo_matching.h"
 #include "vision/temporal_matching.h"
 
@@ -105,21 +107,76 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   for (std::size_t i = 0; i < n; ++i) {
     if (r.keyframes[i].has_top) with_image.push_back(i);
   }
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  struct PairJob {
+    std::size_t a, b;
+    bool loop;
+    double overlap;
+    TemporalOptions options;
+  };
+  std::vector<PairJob> pairs;
   for (std::size_t a = 0; a < with_image.size(); ++a) {
     for (std::size_t b = a + 1; b < with_image.size() && b <= a + static_cast<std::size_t>(o.temporal.neighbours); ++b)
-      pairs.emplace_back(with_image[a], with_image[b]);
+      pairs.push_back({with_image[a], with_image[b], false, 0.0, o.temporal});
   }
   std::vector<PairMatches> matches(pairs.size());
-  SharedProgress match_progress(progress, 0.6, 0.95, static_cast<int>(pairs.size()));
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t p) {
-      match_progress.ThrowIfCancelled();
-      matches[p] = MatchKeyframes(views[pairs[p].first], views[pairs[p].second], rig, o.temporal);
-      match_progress.Step("matching keyframes " + std::to_string(views[pairs[p].first].keyframe) + " and " +
-                          std::to_string(views[pairs[p].second].keyframe));
+  auto match_range = [&](std::size_t begin, std::size_t end, SharedProgress& step) {
+    arena.execute([&] {
+      tbb::parallel_for(begin, end, [&](std::size_t p) {
+        step.ThrowIfCancelled();
+        const PairJob& job = pairs[p];
+        matches[p] = MatchKeyframes(views[job.a], views[job.b], rig, job.options);
+        step.Step(std::string(job.loop ? "loop closure " : "matching keyframes ") +
+                  std::to_string(views[job.a].keyframe) + " and " + std::to_string(views[job.b].keyframe));
+      });
     });
-  });
+  };
+  SharedProgress match_progress(progress, 0.6, 0.85, static_cast<int>(pairs.size()));
+  match_range(0, pairs.size(), match_progress);
+
+  // 2b. Loop closures: pairs far apart in nav order whose footprints overlap
+  // under the prior, matched with a window and tolerances grown by the
+  // navigation drift between them.
+  if (o.loops.enabled) {
+    const auto l0 = std::chrono::steady_clock::now();
+    progress.Update(0.85, "looking for loop closures");
+    std::unordered_map<std::int64_t, const DvlRecord*> dvl_of;
+    for (const DvlRecord& d : bundle.dvl) dvl_of.emplace(d.keyframe, &d);
+    std::vector<LoopKeyframe> lk(n);
+    double path = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i > 0) path += (bundle.nav[i].x_gv.head<3>() - bundle.nav[i - 1].x_gv.head<3>()).norm();
+      LoopKeyframe& k = lk[i];
+      k.x_g_cT = views[i].x_g_cT;
+      k.t = bundle.nav[i].t;
+      k.path = path;
+    }
+    for (std::size_t w = 0; w < with_image.size(); ++w) {
+      const std::size_t i = with_image[w];
+      LoopKeyframe& k = lk[i];
+      k.order = static_cast<int>(w);
+      k.footprint = StereoFootprint(views[i], o.loops.footprint_points);
+      if (k.footprint.empty()) {
+        const auto d = dvl_of.find(views[i].keyframe);
+        if (d != dvl_of.end()) k.footprint = DvlFootprint(man, *d->second, o.loops.footprint_points);
+      }
+      PlaceFootprint(k.footprint, k.x_g_cT);
+    }
+    const std::vector<LoopCandidate> candidates =
+        FindLoopCandidates(lk, rig, o.temporal.neighbours, o.loops, &r.loop_pairs_considered);
+    const std::size_t first_loop = pairs.size();
+    for (const LoopCandidate& c : candidates) {
+      const double distance = (lk[c.b].x_g_cT.translation() - lk[c.a].x_g_cT.translation()).norm();
+      pairs.push_back({c.a, c.b, true, c.overlap,
+                       LoopMatchingOptions(o.temporal, o.loops, man.noise, rig.top.fx, lk[c.a].footprint, c.seconds,
+                                           c.path, distance)});
+    }
+    matches.resize(pairs.size());
+    SharedProgress loop_progress(progress, 0.85, 0.95, static_cast<int>(candidates.size()));
+    match_range(first_loop, pairs.size(), loop_progress);
+    r.loop_pairs_tried = static_cast<int>(candidates.size());
+    for (std::size_t p = first_loop; p < pairs.size(); ++p) r.loop_pairs_accepted += matches[p].accepted;
+    r.loop_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - l0).count();
+  }
 
   // 3. Tracks: links of accepted pairs, best (smallest descriptor distance) first.
   progress.Update(0.95, "building tracks");
@@ -128,9 +185,13 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   for (std::size_t i = 0; i < n; ++i) verdicts[i].assign(views[i].top.size(), MatchVerdict::kUnverified);
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const PairMatches& m = matches[p];
+    const PairJob& job = pairs[p];
     FrontEndPair fp;
-    fp.from = views[pairs[p].first].keyframe;
-    fp.to = views[pairs[p].second].keyframe;
+    fp.from = views[job.a].keyframe;
+    fp.to = views[job.b].keyframe;
+    fp.loop = job.loop;
+    fp.overlap = job.overlap;
+    fp.window = job.options.window;
     fp.stereo = m.stereo;
     fp.putative = m.putative;
     fp.inliers = m.inliers;
@@ -141,7 +202,7 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
       const bool inlier = q < m.putative_inlier.size() && m.putative_inlier[q];
       fp.matches.push_back({t.a, t.b, inlier});
       // The verdict on the stereo matches of both keyframes' top features.
-      for (const auto& [ki, f] : {std::pair{pairs[p].first, t.a}, std::pair{pairs[p].second, t.b}}) {
+      for (const auto& [ki, f] : {std::pair{job.a, t.a}, std::pair{job.b, t.b}}) {
         std::vector<MatchVerdict>& v = verdicts[ki];
         if (inlier) {
           v[static_cast<std::size_t>(f)] = MatchVerdict::kInlier;
@@ -153,7 +214,7 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
     r.pairs.push_back(std::move(fp));
     if (!m.accepted) continue;
     for (const auto& t : m.matches)
-      links.push_back({t.distance, static_cast<int>(pairs[p].first), t.a, static_cast<int>(pairs[p].second), t.b});
+      links.push_back({t.distance, static_cast<int>(job.a), t.a, static_cast<int>(job.b), t.b});
   }
   std::stable_sort(links.begin(), links.end(), [](const Link& a, const Link& b) { return a.distance < b.distance; });
   std::vector<int> counts(n);
@@ -214,10 +275,16 @@ void WriteFrontEndResult(const FrontEndResult& r, const SurveyManifest& manifest
   const fs::path path(features_csv);
   if (path.has_parent_path()) fs::create_directories(path.parent_path());
   WriteFileAtomic(features_csv, FeaturesCsvText(r.features, manifest.camera.stereo()));
-  CsvWriter w({"from", "to", "method", "putative", "inliers", "accepted", "note"});
+  CsvWriter w({"from", "to", "method", "putative", "inliers", "accepted", "note", "kind", "overlap", "window"});
   for (const auto& p : r.pairs) {
     w.Add(p.from).Add(p.to).Add(p.stereo ? "rigid" : "essential").Add(p.putative).Add(p.inliers);
-    w.Add(p.accepted ? "1" : "0").Add(p.note);
+    w.Add(p.accepted ? "1" : "0").Add(p.note).Add(p.loop ? "loop" : "sequential");
+    if (p.loop) {
+      w.Add(p.overlap);
+    } else {
+      w.Add("");
+    }
+    w.Add(p.window);
     w.EndRow();
   }
   WriteFileAtomic((path.parent_path() / "match-graph.csv").string(), w.text());

@@ -55,6 +55,9 @@ struct FrontEndKeyframe {
 struct FrontEndPair {
   std::int64_t from = 0, to = 0;
   bool stereo = false;  // rigid alignment of clouds; else essential matrix
+  bool loop = false;    // a loop closure (far apart in nav order); else neighbours in nav order
+  double overlap = 0;   // loop: the predicted footprint overlap (loop_closure.h)
+  double window = 0;    // px: the search window used (loops: grown with the nav drift)
   int putative = 0, inliers = 0;
   bool accepted = false;
   std::string note;                    // why a pair was dropped
@@ -69,6 +72,12 @@ struct FrontEndResult {
   int landmarks = 0;                         // tracks written (ids 0 .. landmarks-1)
   int refused_merges = 0;                    // links refused: would put two features of one image in a track
   int dropped_tracks = 0;                    // tracks seen in fewer than min_keyframes keyframes
+  // Loop closures: keyframe pairs whose overlap was predicted, the pairs
+  // tried (the candidates, in `pairs` with loop set) and accepted, and the
+  // time spent on them (candidate search and matching, wall clock).
+  std::size_t loop_pairs_considered = 0;
+  int loop_pairs_tried = 0, loop_pairs_accepted = 0;
+  double loop_seconds = 0;
   double seconds = 0;
 
   // Index into `keyframes` of a keyframe id (-1: none).
@@ -81,7 +90,9 @@ struct FrontEndResult {
 FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& options, Progress& progress);
 
 // Writes `features_csv` (the version 1 features.csv) and, beside it,
-// match-graph.csv (from,to,method,putative,inliers,accepted,note).
+// match-graph.csv (from,to,method,putative,inliers,accepted,note,kind,
+// overlap,window; kind is `sequential` or `loop`, overlap the loop's
+// predicted footprint overlap, window the search radius in px).
 void WriteFrontEndResult(const FrontEndResult& result, const SurveyManifest& manifest, const std::string& features_csv);
 
 // Runs the front end when a version 2 bundle has images and no feature

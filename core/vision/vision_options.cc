@@ -49,12 +49,26 @@ void TemporalOptions::Check() const {
   Require(Positive(max_translation_error), "max_translation_error", "must be positive (m)");
 }
 
+void LoopOptions::Check() const {
+  Require(candidates >= 1 && candidates <= 100, "loop_candidates", "must be between 1 and 100");
+  Require(std::isfinite(min_overlap) && min_overlap > 0 && min_overlap <= 1, "loop_min_overlap", "must be in (0, 1]");
+  Require(std::isfinite(min_path_ratio) && min_path_ratio >= 1, "loop_min_path_ratio", "must be at least 1");
+  Require(Positive(max_view_angle_deg) && max_view_angle_deg <= 90, "loop_max_view_angle_deg",
+          "must be in (0, 90] degrees");
+  Require(footprint_points >= 10 && footprint_points <= 100000, "loop_footprint_points",
+          "must be between 10 and 100000");
+  Require(std::isfinite(drift_sigmas) && drift_sigmas >= 0, "loop_drift_sigmas", "must be >= 0");
+  Require(Positive(max_window), "loop_max_window", "must be positive (px)");
+  Require(min_inliers >= 5, "loop_min_inliers", "must be at least 5 (the essential matrix needs 5)");
+}
+
 void TrackOptions::Check() const { Require(min_keyframes >= 2, "min_keyframes", "must be at least 2"); }
 
 void FrontEndOptions::Check() const {
   detection.Check();
   stereo.Check();
   temporal.Check();
+  loops.Check();
   tracks.Check();
   Require(threads >= 0, "threads", "must be >= 0 (0: all cores)");
 }

@@ -42,6 +42,24 @@ struct TemporalOptions {
   void Check() const;
 };
 
+// Loop closures: keyframe pairs far apart in nav order (adjacent tracks of a
+// lawnmower, revisits) whose footprints on the hull overlap under the
+// navigation prior, matched like neighbours but with a search window and
+// prior tolerances grown by the navigation drift between the two keyframes
+// (survey.json noise: odometry rates times the time between them).
+struct LoopOptions {
+  bool enabled = true;             // look for loop closures at all
+  int candidates = 3;              // each keyframe's this many best partners (by predicted overlap) are tried
+  double min_overlap = 0.3;        // predicted footprint overlap (the smaller of both ways) at least this
+  double min_path_ratio = 2.0;     // nav path between the two at least this x max(their distance, footprint radius)
+  double max_view_angle_deg = 40;  // optical axes (under the prior) within this angle
+  int footprint_points = 200;      // points of a keyframe's footprint used to predict the overlap
+  double drift_sigmas = 1.0;       // window and tolerances grow by this many times the predicted drift
+  double max_window = 200.0;       // px: the grown search window at most this
+  int min_inliers = 20;            // a loop pair is accepted with at least this many RANSAC inliers
+  void Check() const;
+};
+
 // Tracks across keyframes.
 struct TrackOptions {
   int min_keyframes = 2;  // tracks seen in fewer keyframes are dropped
@@ -52,6 +70,7 @@ struct FrontEndOptions {
   DetectionOptions detection;
   StereoOptions stereo;
   TemporalOptions temporal;
+  LoopOptions loops;
   TrackOptions tracks;
   int threads = 0;  // worker threads for detection and matching (0: all cores)
   void Check() const;

@@ -86,6 +86,36 @@ inline VisionScene MakeVisionScene(bool stereo, bool cylinder, int keyframes, do
   return s;
 }
 
+// A two-track lawnmower over a textured plane 1.5 m from a 640x512 stereo
+// (or mono) camera looking up: `per_track` keyframes `step` m apart along
+// vehicle x, then the same number back along -x, `spacing` m over in y (the
+// vehicle keeps its heading, as a hovering vehicle does). The prior drifts
+// on the way back by `drift` m per keyframe (x) and half of it (y), on top of
+// MakeVisionScene's errors, so a revisit is off by decimetres; keyframes are
+// 1 s apart and survey.json's odometry_translation_rate is 0.03 m/s, so the
+// drift model covers it.
+inline VisionScene MakeTwoTrackScene(bool stereo, int per_track = 8, double step = 0.3, double spacing = 0.6,
+                                     double drift = 0.03) {
+  VisionScene s = MakeVisionScene(stereo, false, 2 * per_track, step);
+  s.manifest.noise.odometry_translation_rate = 0.03;
+  for (int i = 0; i < 2 * per_track; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    const bool back = i >= per_track;
+    const Vector6d error = s.nav[k].x_gv - s.truth[k].x_gv;
+    s.truth[k].x_gv << (back ? step * (2 * per_track - 1 - i) : step * i), (back ? spacing : 0.0) + 0.02 * std::sin(i),
+        0, 0, 0, 0.003 * std::cos(i);
+    s.nav[k].x_gv = s.truth[k].x_gv + error;
+    if (back) {
+      s.nav[k].x_gv[0] += drift * (i - per_track + 1);
+      s.nav[k].x_gv[1] += 0.5 * drift * (i - per_track + 1);
+    }
+  }
+  // A texture that does not repeat within the surveyed patch (2048 texels at
+  // 400 per metre: 5 m).
+  s.surface.texture = RandomTexture(2048, 11);
+  return s;
+}
+
 // Writes the scene as a version 2 bundle without features.csv; keyframe
 // `drop_bottom` (an index) loses its bottom image (a dropped frame).
 inline void WriteSceneBundle(const VisionScene& s, const std::string& dir, int drop_bottom = -1) {
