@@ -278,24 +278,42 @@ bool ComputeSchurCovariances(ceres::Problem& problem, const std::vector<double*>
       }
     }
   }
-  // The landmarks, in batches: their parts in parallel, their Schur terms
+  // The landmarks, in batches: their residual blocks evaluated in order (one
+  // thread: Problem::EvaluateResidualBlock updates the shared parameter
+  // blocks' state), their parts in parallel, their Schur terms
   // -H_cl H_ll^-1 H_lc (and J_c^T J_c) added in landmark order.
   std::vector<LandmarkPart> parts(blocks.size());
   std::vector<char> failed(blocks.size(), 0);
   constexpr std::size_t kBatch = 2048;
+  struct Evaluated {
+    std::vector<double*> params;
+    std::vector<RowMajorMatrix> jac;
+  };
+  std::vector<std::vector<Evaluated>> evaluated(kBatch);
   std::vector<RowMajorMatrix> local(kBatch);  // per landmark of the batch: J_c^T J_c - H_cl G
   for (std::size_t first = 0; first < blocks.size(); first += kBatch) {
     const std::size_t count = std::min(kBatch, blocks.size() - first);
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t li = first + k;
+      std::vector<Evaluated>& ev = evaluated[k];
+      ev.resize(of_landmark[li].size());
+      for (std::size_t r = 0; r < ev.size(); ++r) {
+        ev[r].params.clear();
+        problem.GetParameterBlocksForResidualBlock(of_landmark[li][r], &ev[r].params);
+        if (!EvaluateJacobians(problem, of_landmark[li][r], ev[r].params, ev[r].jac)) {
+          *why = "a residual block of landmark " + std::to_string(li) + " failed to evaluate";
+          return false;
+        }
+      }
+    }
     ParallelFor(count, num_threads, [&](std::size_t k) {
       const std::size_t li = first + k;
       LandmarkPart& part = parts[li];
-      std::vector<double*> params;
-      std::vector<RowMajorMatrix> jac;
-      for (const ceres::ResidualBlockId id : of_landmark[li]) {
-        params.clear();
-        problem.GetParameterBlocksForResidualBlock(id, &params);
-        for (double* p : params) {
-          const auto it = reduced_of.find(p);
+      const std::vector<Evaluated>& ev = evaluated[k];
+      for (const Evaluated& e : ev) {
+        for (std::size_t a = 0; a < e.params.size(); ++a) {
+          if (e.jac[a].size() == 0) continue;
+          const auto it = reduced_of.find(e.params[a]);
           if (it != reduced_of.end()) part.blocks.push_back(it->second);
         }
       }
@@ -309,13 +327,9 @@ bool ComputeSchurCovariances(ceres::Problem& problem, const std::vector<double*>
       RowMajorMatrix& hcc = local[k];
       hcc.setZero(m, m);
       std::vector<int> at;
-      for (const ceres::ResidualBlockId id : of_landmark[li]) {
-        params.clear();
-        problem.GetParameterBlocksForResidualBlock(id, &params);
-        if (!EvaluateJacobians(problem, id, params, jac)) {
-          failed[li] = 1;
-          return;
-        }
+      for (const Evaluated& e : ev) {
+        const std::vector<double*>& params = e.params;
+        const std::vector<RowMajorMatrix>& jac = e.jac;
         at.assign(params.size(), -1);  // local column of each variable reduced block
         std::size_t lpos = params.size();
         for (std::size_t a = 0; a < params.size(); ++a) {
@@ -351,7 +365,7 @@ bool ComputeSchurCovariances(ceres::Problem& problem, const std::vector<double*>
     for (std::size_t k = 0; k < count; ++k) {
       const std::size_t li = first + k;
       if (failed[li]) {
-        *why = "landmark " + std::to_string(li) + " has a singular information block (or failed to evaluate)";
+        *why = "landmark " + std::to_string(li) + " has a singular information block";
         return false;
       }
       const LandmarkPart& part = parts[li];

@@ -150,6 +150,27 @@ TEST(SchurCovariance, MatchesSparseQrWithoutSurfaceFactors) {
   ExpectSchurMatchesSparseQr(o);
 }
 
+// Several threads (the landmarks' parts are computed in parallel, their
+// residual blocks evaluated on one thread): the same covariances as on one,
+// to the agreement of the two adjustments themselves.
+TEST(SchurCovariance, ThreeThreadsAgreeWithOne) {
+  const SimulatedSurvey& sim = test::SmallSurvey();
+  const Pose guess = Pose::FromVector(*sim.bundle.manifest.model_pose_guess);
+  NullProgress p;
+  AdjustmentOptions o;
+  o.max_iterations = 30;
+  o.num_threads = 1;
+  const AdjustmentResult one = RunAdjustment(sim.bundle, sim.cad, guess, o, p);
+  o.num_threads = 3;
+  const AdjustmentResult three = RunAdjustment(sim.bundle, sim.cad, guess, o, p);
+  ASSERT_EQ(three.covariance_method, CovarianceMethod::kFull) << three.covariance_note;
+  ASSERT_EQ(one.landmarks.size(), three.landmarks.size());
+  for (std::size_t i = 0; i < one.landmarks.size(); ++i) {
+    EXPECT_LT(RelativeDifference(three.landmarks[i].covariance, one.landmarks[i].covariance), 1e-4) << i;
+    EXPECT_NEAR(three.landmarks[i].sigma_h, one.landmarks[i].sigma_h, 1e-4 * one.landmarks[i].sigma_h) << i;
+  }
+}
+
 // r = x - target over the first `rows` coordinates of a 3-vector.
 class Partial final : public ceres::CostFunction {
  public:
