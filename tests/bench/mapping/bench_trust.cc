@@ -1,6 +1,7 @@
 // Benchmarks of the mapping-trust steps (docs/benchmarks.md):
 //   bench_trust [--threads N] [--skip-covariance] [--skip-compare]
 //               [--preset NAME] [--methods none,conditional,full,full-qr]
+//               [--max-iterations N]
 // - covariance: the survey (default demo) adjusted (max-mixture) with each
 //   landmark covariance method: the wall and CPU seconds of the covariance
 //   step, and the z-scores (h - h_true) / sigma_h of the hull features (std
@@ -28,7 +29,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-void Covariance(int threads, const std::string& preset, const std::vector<hull::CovarianceMethod>& methods) {
+// max_iterations > 0 caps the solver (the covariance step of a big preset
+// timed on the same structure without waiting for convergence).
+void Covariance(int threads, const std::string& preset, const std::vector<hull::CovarianceMethod>& methods,
+                int max_iterations) {
   hull::NullProgress p;
   const hull::SimulatedSurvey s = hull::SimulateSurvey(hull::SurveyPreset(preset), p);
   std::map<std::int64_t, const hull::TrueLandmark*> truth;
@@ -43,6 +47,7 @@ void Covariance(int threads, const std::string& preset, const std::vector<hull::
     hull::AdjustmentOptions o;
     o.covariance = m;
     o.num_threads = threads;
+    if (max_iterations > 0) o.max_iterations = max_iterations;
     const hull::AdjustmentResult r =
         hull::RunAdjustment(s.bundle, s.cad, hull::Pose::FromVector(*s.bundle.manifest.model_pose_guess), o, p);
     double sum = 0, sum2 = 0, sig = 0;
@@ -98,7 +103,7 @@ void Compare(int threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int threads = 0;
+  int threads = 0, max_iterations = 0;
   bool covariance = true, compare = true;
   std::string preset = "demo";
   std::vector<hull::CovarianceMethod> methods = {hull::CovarianceMethod::kNone, hull::CovarianceMethod::kConditional,
@@ -110,6 +115,8 @@ int main(int argc, char** argv) {
       covariance = false;
     } else if (!std::strcmp(argv[i], "--skip-compare")) {
       compare = false;
+    } else if (!std::strcmp(argv[i], "--max-iterations") && i + 1 < argc) {
+      max_iterations = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--preset") && i + 1 < argc) {
       preset = argv[++i];
     } else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) {
@@ -119,11 +126,11 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_trust [--threads N] [--skip-covariance] [--skip-compare] [--preset NAME] "
-                   "[--methods none,conditional,full,full-qr]\n");
+                   "[--methods none,conditional,full,full-qr] [--max-iterations N]\n");
       return 2;
     }
   }
-  if (covariance) Covariance(threads, preset, methods);
+  if (covariance) Covariance(threads, preset, methods, max_iterations);
   if (compare) Compare(threads);
   return 0;
 }
