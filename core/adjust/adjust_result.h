@@ -76,6 +76,8 @@ struct AdjustmentResult {
   std::string covariance_note;
   double covariance_seconds = 0;      // wall
   double covariance_cpu_seconds = 0;  // process CPU (all threads); not written
+  // The Schur complement's reduced system: columns and factor nonzeros (not written).
+  std::size_t covariance_reduced_size = 0, covariance_factor_nonzeros = 0;
 
   // The fraction of landmarks with lambda = 1 at the end.
   double FractionOnSurface() const;

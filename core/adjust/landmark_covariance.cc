@@ -159,6 +159,8 @@ bool SchurCovariances(ceres::Problem& problem, const std::vector<double*>& block
   adjust::SchurCovariances s;
   if (!adjust::ComputeSchurCovariances(problem, blocks, joint ? model : nullptr, num_threads, &s, why)) return false;
   for (std::size_t i = 0; i < blocks.size(); ++i) out.covariance[i] = s.ll[i];
+  out.reduced_size = s.reduced_size;
+  out.factor_nonzeros = s.factor_nonzeros;
   if (!joint) return true;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     out.sigma_h[i] = JointSigma(problem, model, blocks[i], (*surface)[i], out.covariance[i], s.lm[i], s.mm);

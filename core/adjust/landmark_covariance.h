@@ -20,6 +20,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,9 @@ struct LandmarkCovariances {
   std::string note;                                   // why a fallback happened, if it did
   double seconds = 0;                                 // wall time
   double cpu_seconds = 0;                             // process CPU time (all threads) over the same span
+  // kFull: the columns of the reduced system S and the strictly lower
+  // nonzeros of its LDL^T factor (0 otherwise).
+  std::size_t reduced_size = 0, factor_nonzeros = 0;
 };
 
 // blocks: the landmark parameter blocks (3 doubles each) of `problem`, at

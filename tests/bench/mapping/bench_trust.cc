@@ -66,6 +66,10 @@ void Covariance(int threads, const std::string& preset, const std::vector<hull::
                 hull::CovarianceMethodName(r.covariance_method), r.seconds, r.covariance_seconds,
                 r.covariance_cpu_seconds, n, n ? 1000 * sig / n : 0.0, mean, sd);
     if (!r.covariance_note.empty()) std::printf("  note: %s\n", r.covariance_note.c_str());
+    if (r.covariance_reduced_size) {
+      std::printf("  reduced system: %zu columns, factor %zu nonzeros\n", r.covariance_reduced_size,
+                  r.covariance_factor_nonzeros);
+    }
     std::fflush(stdout);
   }
 }
