@@ -206,7 +206,8 @@ bool ComputeSchurCovariances(ceres::Problem& problem, const std::vector<double*>
   std::unordered_map<const double*, int> landmark_of;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     if (!problem.HasParameterBlock(blocks[i]) || problem.IsParameterBlockConstant(blocks[i]) ||
-        problem.ParameterBlockTangentSize(blocks[i]) != 3 || !landmark_of.emplace(blocks[i], int(i)).second) {
+        problem.ParameterBlockTangentSize(blocks[i]) != 3 ||
+        !landmark_of.emplace(blocks[i], static_cast<int>(i)).second) {
       *why = "landmark block " + std::to_string(i) + " is not a distinct variable 3-vector of the problem";
       return false;
     }
