@@ -27,8 +27,10 @@ options:
   --max-iterations N   Levenberg-Marquardt iterations (default 100)
   --threads N          0: all cores (default)
   --linear-solver S    sparse-schur (default) or iterative-schur (less memory, slower)
-  --covariance M       landmark covariances and sigma of h: full (default),
-                       conditional (poses held fixed; cheap) or none
+  --covariance M       landmark covariances and sigma of h: full (default;
+                       Schur complement), full-qr (the same by Ceres' sparse
+                       QR; slower), conditional (poses held fixed; cheap)
+                       or none
   --no-servo           hold the servo angles at their measurements
   --no-extrinsic       hold the camera extrinsic at its nominal value
   --no-dvl             leave out the DVL raycast factors

@@ -71,8 +71,9 @@ struct AdjustmentOptions {
   int num_threads = 0;  // 0: all cores
   bool verbose = false;
   // Landmark covariances after the solve (landmark_covariance.h): full (the
-  // marginal, Ceres' sparse-QR covariance), conditional (poses held fixed;
-  // cheap, optimistic) or none. Each landmark's sigma of h follows.
+  // marginal, by the Schur complement), full-qr (the same, Ceres' sparse-QR
+  // covariance; slower), conditional (poses held fixed; cheap, optimistic)
+  // or none. Each landmark's sigma of h follows.
   CovarianceMethod covariance = CovarianceMethod::kFull;
   // Runaway detection (cost_watch.h): a solve whose cost is not finite,
   // absurd from the start or stalled while absurd ends with an InputError

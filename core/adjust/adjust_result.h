@@ -74,7 +74,10 @@ struct AdjustmentResult {
   // How the landmark covariances were computed (a fallback says why) and how long it took.
   CovarianceMethod covariance_method = CovarianceMethod::kNone;
   std::string covariance_note;
-  double covariance_seconds = 0;
+  double covariance_seconds = 0;      // wall
+  double covariance_cpu_seconds = 0;  // process CPU (all threads); not written
+  // The Schur complement's reduced system: columns and factor nonzeros (not written).
+  std::size_t covariance_reduced_size = 0, covariance_factor_nonzeros = 0;
 
   // The fraction of landmarks with lambda = 1 at the end.
   double FractionOnSurface() const;

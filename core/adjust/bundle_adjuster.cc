@@ -702,6 +702,9 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   result.covariance_method = cov.method;
   result.covariance_note = cov.note;
   result.covariance_seconds = cov.seconds;
+  result.covariance_cpu_seconds = cov.cpu_seconds;
+  result.covariance_reduced_size = cov.reduced_size;
+  result.covariance_factor_nonzeros = cov.factor_nonzeros;
   for (std::size_t i = 0, kept_index = 0; i < s.landmark.size(); ++i) {
     if (dropped[i]) continue;
     LandmarkEstimate e;

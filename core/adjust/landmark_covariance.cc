@@ -10,9 +10,11 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <limits>
 #include <mutex>
 
+#include "adjust/landmark_covariance_schur.h"
 #include "base/error.h"
 
 namespace hull {
@@ -88,37 +90,82 @@ Eigen::Matrix3d Conditional(const ceres::Problem& problem, double* block) {
   return 0.5 * (c + c.transpose());
 }
 
-// sigma_h from the joint covariance of [model, landmark] and the surface
-// residual's Jacobian (tangent space), normalised so that dh/dl is unit.
-void JointSigmas(const ceres::Problem& problem, const ceres::Covariance& covariance, const std::vector<double*>& blocks,
-                 double* model, const std::vector<ceres::ResidualBlockId>& surface, LandmarkCovariances& out) {
+using RowMajor = adjust::RowMajorMatrix;
+
+// sigma_h from the joint covariance of [model, landmark] (ll, lm: 3 x tm, mm:
+// tm x tm, tangent space) and the surface residual's Jacobian, normalised so
+// that dh/dl is unit; NaN when it cannot be formed.
+double JointSigma(const ceres::Problem& problem, double* model, double* block, ceres::ResidualBlockId surface,
+                  const Eigen::Matrix3d& ll, const RowMajor& lm, const RowMajor& mm) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const int tm = problem.ParameterBlockTangentSize(model);
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  RowMajor mm(tm, tm);
-  if (!covariance.GetCovarianceBlockInTangentSpace(model, model, mm.data())) return;
+  if (!surface || lm.rows() != 3 || lm.cols() != tm || mm.rows() != tm || mm.cols() != tm) return kNaN;
   std::vector<double*> params;
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (!surface[i]) continue;
-    params.clear();
-    problem.GetParameterBlocksForResidualBlock(surface[i], &params);
-    if (params.size() != 2 || params[0] != model || params[1] != blocks[i]) continue;
-    // h is the first residual (scaled by 1 / sigma of the chosen label).
-    const int nr = problem.GetCostFunctionForResidualBlock(surface[i])->num_residuals();
-    RowMajor jm(nr, tm), jl(nr, 3);
-    std::vector<double> residuals(static_cast<std::size_t>(nr));
-    double* jacobians[2] = {jm.data(), jl.data()};
-    double cost = 0;
-    if (!problem.EvaluateResidualBlock(surface[i], false, &cost, residuals.data(), jacobians)) continue;
-    const double scale = jl.row(0).norm();
-    if (!(scale > 0)) continue;
-    RowMajor lm(3, tm);
-    if (!covariance.GetCovarianceBlockInTangentSpace(blocks[i], model, lm.data())) continue;
-    const Eigen::RowVector3d gl = jl.row(0) / scale;
-    const Eigen::RowVectorXd gm = jm.row(0) / scale;
-    const double v = gl * out.covariance[i] * gl.transpose() + 2.0 * (gl * lm * gm.transpose())(0, 0) +
-                     (gm * mm * gm.transpose())(0, 0);
-    out.sigma_h[i] = v >= 0 ? std::sqrt(v) : std::numeric_limits<double>::quiet_NaN();
+  problem.GetParameterBlocksForResidualBlock(surface, &params);
+  if (params.size() != 2 || params[0] != model || params[1] != block) return kNaN;
+  // h is the first residual (scaled by 1 / sigma of the chosen label).
+  const int nr = problem.GetCostFunctionForResidualBlock(surface)->num_residuals();
+  RowMajor jm(nr, tm), jl(nr, 3);
+  std::vector<double> residuals(static_cast<std::size_t>(nr));
+  double* jacobians[2] = {jm.data(), jl.data()};
+  double cost = 0;
+  if (!problem.EvaluateResidualBlock(surface, false, &cost, residuals.data(), jacobians)) return kNaN;
+  const double scale = jl.row(0).norm();
+  if (!(scale > 0)) return kNaN;
+  const Eigen::RowVector3d gl = jl.row(0) / scale;
+  const Eigen::RowVectorXd gm = jm.row(0) / scale;
+  const double v = gl * ll * gl.transpose() + 2.0 * (gl * lm * gm.transpose())(0, 0) + (gm * mm * gm.transpose())(0, 0);
+  return v >= 0 ? std::sqrt(v) : kNaN;
+}
+
+// kFullSparseQr: Ceres' Covariance. False when it fails (rank deficiency).
+bool SparseQrCovariances(ceres::Problem& problem, const std::vector<double*>& blocks, bool joint, double* model,
+                         const std::vector<ceres::ResidualBlockId>* surface, int num_threads,
+                         LandmarkCovariances& out) {
+  AlignSuiteSparseAllocations();
+  ceres::Covariance::Options co;
+  co.algorithm_type = ceres::SPARSE_QR;
+  co.num_threads = num_threads;
+  co.apply_loss_function = true;
+  ceres::Covariance covariance(co);
+  std::vector<std::pair<const double*, const double*>> pairs;
+  pairs.reserve(blocks.size());
+  for (double* b : blocks) pairs.emplace_back(b, b);
+  if (joint) {
+    pairs.emplace_back(model, model);
+    for (double* b : blocks) pairs.emplace_back(b, model);
   }
+  if (!covariance.Compute(pairs, &problem)) return false;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> c;
+    if (covariance.GetCovarianceBlock(blocks[i], blocks[i], c.data())) out.covariance[i] = 0.5 * (c + c.transpose());
+  }
+  if (!joint) return true;
+  const int tm = problem.ParameterBlockTangentSize(model);
+  RowMajor mm(tm, tm), lm(3, tm);
+  if (!covariance.GetCovarianceBlockInTangentSpace(model, model, mm.data())) return true;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    if (!(*surface)[i] || !covariance.GetCovarianceBlockInTangentSpace(blocks[i], model, lm.data())) continue;
+    out.sigma_h[i] = JointSigma(problem, model, blocks[i], (*surface)[i], out.covariance[i], lm, mm);
+  }
+  return true;
+}
+
+// kFull: the Schur complement (landmark_covariance_schur.h). False (with
+// *why) when it fails.
+bool SchurCovariances(ceres::Problem& problem, const std::vector<double*>& blocks, bool joint, double* model,
+                      const std::vector<ceres::ResidualBlockId>* surface, int num_threads, LandmarkCovariances& out,
+                      std::string* why) {
+  adjust::SchurCovariances s;
+  if (!adjust::ComputeSchurCovariances(problem, blocks, joint ? model : nullptr, num_threads, &s, why)) return false;
+  for (std::size_t i = 0; i < blocks.size(); ++i) out.covariance[i] = s.ll[i];
+  out.reduced_size = s.reduced_size;
+  out.factor_nonzeros = s.factor_nonzeros;
+  if (!joint) return true;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    out.sigma_h[i] = JointSigma(problem, model, blocks[i], (*surface)[i], out.covariance[i], s.lm[i], s.mm);
+  }
+  return true;
 }
 
 }  // namespace
@@ -131,6 +178,8 @@ const char* CovarianceMethodName(CovarianceMethod m) {
       return "conditional";
     case CovarianceMethod::kFull:
       return "full";
+    case CovarianceMethod::kFullSparseQr:
+      return "full-qr";
   }
   return "?";
 }
@@ -139,13 +188,15 @@ CovarianceMethod ParseCovarianceMethod(const std::string& name) {
   if (name == "none") return CovarianceMethod::kNone;
   if (name == "conditional") return CovarianceMethod::kConditional;
   if (name == "full") return CovarianceMethod::kFull;
-  throw OptionError("covariance", "expected none, conditional or full, got '" + name + "'");
+  if (name == "full-qr") return CovarianceMethod::kFullSparseQr;
+  throw OptionError("covariance", "expected none, conditional, full or full-qr, got '" + name + "'");
 }
 
 LandmarkCovariances ComputeLandmarkCovariances(ceres::Problem& problem, const std::vector<double*>& blocks,
                                                CovarianceMethod method, int num_threads, double* model_block,
                                                const std::vector<ceres::ResidualBlockId>* surface) {
   const auto t0 = Clock::now();
+  const std::clock_t c0 = std::clock();
   LandmarkCovariances out;
   out.covariance.assign(blocks.size(), kUnknown);
   out.sigma_h.assign(blocks.size(), std::numeric_limits<double>::quiet_NaN());
@@ -153,27 +204,15 @@ LandmarkCovariances ComputeLandmarkCovariances(ceres::Problem& problem, const st
   const bool joint = model_block && surface && surface->size() == blocks.size() &&
                      problem.HasParameterBlock(model_block) && !problem.IsParameterBlockConstant(model_block);
   if (method == CovarianceMethod::kFull && !blocks.empty()) {
-    AlignSuiteSparseAllocations();
-    ceres::Covariance::Options co;
-    co.algorithm_type = ceres::SPARSE_QR;
-    co.num_threads = num_threads;
-    co.apply_loss_function = true;
-    ceres::Covariance covariance(co);
-    std::vector<std::pair<const double*, const double*>> pairs;
-    pairs.reserve(blocks.size());
-    for (double* b : blocks) pairs.emplace_back(b, b);
-    if (joint) {
-      pairs.emplace_back(model_block, model_block);
-      for (double* b : blocks) pairs.emplace_back(b, model_block);
+    std::string why;
+    if (!SchurCovariances(problem, blocks, joint, model_block, surface, num_threads, out, &why)) {
+      std::fill(out.covariance.begin(), out.covariance.end(), kUnknown);
+      std::fill(out.sigma_h.begin(), out.sigma_h.end(), std::numeric_limits<double>::quiet_NaN());
+      out.method = CovarianceMethod::kConditional;
+      out.note = "the full covariance failed (" + why + "); landmark-conditional covariances instead";
     }
-    if (covariance.Compute(pairs, &problem)) {
-      for (std::size_t i = 0; i < blocks.size(); ++i) {
-        Eigen::Matrix<double, 3, 3, Eigen::RowMajor> c;
-        if (covariance.GetCovarianceBlock(blocks[i], blocks[i], c.data()))
-          out.covariance[i] = 0.5 * (c + c.transpose());
-      }
-      if (joint) JointSigmas(problem, covariance, blocks, model_block, *surface, out);
-    } else {
+  } else if (method == CovarianceMethod::kFullSparseQr && !blocks.empty()) {
+    if (!SparseQrCovariances(problem, blocks, joint, model_block, surface, num_threads, out)) {
       out.method = CovarianceMethod::kConditional;
       out.note = "the full covariance failed (rank-deficient Jacobian); landmark-conditional covariances instead";
     }
@@ -182,6 +221,7 @@ LandmarkCovariances ComputeLandmarkCovariances(ceres::Problem& problem, const st
     for (std::size_t i = 0; i < blocks.size(); ++i) out.covariance[i] = Conditional(problem, blocks[i]);
   }
   out.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  out.cpu_seconds = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   return out;
 }
 

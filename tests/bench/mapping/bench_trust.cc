@@ -1,9 +1,11 @@
 // Benchmarks of the mapping-trust steps (docs/benchmarks.md):
 //   bench_trust [--threads N] [--skip-covariance] [--skip-compare]
-// - covariance: the demo survey adjusted (max-mixture) with landmark
-//   covariances none / conditional / full: the seconds they add, and the
-//   z-scores (h - h_true) / sigma_h of the hull features (std near 1 when
-//   sigma_h is honest);
+//               [--preset NAME] [--methods none,conditional,full,full-qr]
+//               [--max-iterations N]
+// - covariance: the survey (default demo) adjusted (max-mixture) with each
+//   landmark covariance method: the wall and CPU seconds of the covariance
+//   step, and the z-scores (h - h_true) / sigma_h of the hull features (std
+//   near 1 when sigma_h is honest);
 // - compare: the demo survey and its second survey (2 patches grown by 5 cm,
 //   2 new, the last object removed), each mapped from the truth; the
 //   seconds of CompareSurveys and its object classes against the truth.
@@ -13,6 +15,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "adjust/bundle_adjuster.h"
 #include "mapping/mapper.h"
@@ -24,18 +29,25 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-void Covariance(int threads) {
+// max_iterations > 0 caps the solver (the covariance step of a big preset
+// timed on the same structure without waiting for convergence).
+void Covariance(int threads, const std::string& preset, const std::vector<hull::CovarianceMethod>& methods,
+                int max_iterations) {
   hull::NullProgress p;
-  const hull::SimulatedSurvey s = hull::SimulateSurvey(hull::SurveyPreset("demo"), p);
+  const hull::SimulatedSurvey s = hull::SimulateSurvey(hull::SurveyPreset(preset), p);
   std::map<std::int64_t, const hull::TrueLandmark*> truth;
   for (const auto& l : s.bundle.truth->landmarks) truth[l.landmark] = &l;
-  std::printf("| covariance | adjustment s | covariance s | hull features | sigma_h mean (mm) | z mean | z std |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
-  for (const hull::CovarianceMethod m :
-       {hull::CovarianceMethod::kNone, hull::CovarianceMethod::kConditional, hull::CovarianceMethod::kFull}) {
+  std::printf("%s: %zu keyframes, %zu landmarks, %d threads\n", preset.c_str(), s.bundle.nav.size(),
+              s.bundle.truth->landmarks.size(), threads);
+  std::printf(
+      "| covariance | adjustment s | covariance s (wall) | covariance s (CPU) | hull features | sigma_h mean (mm) | z "
+      "mean | z std |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const hull::CovarianceMethod m : methods) {
     hull::AdjustmentOptions o;
     o.covariance = m;
     o.num_threads = threads;
+    if (max_iterations > 0) o.max_iterations = max_iterations;
     const hull::AdjustmentResult r =
         hull::RunAdjustment(s.bundle, s.cad, hull::Pose::FromVector(*s.bundle.manifest.model_pose_guess), o, p);
     double sum = 0, sum2 = 0, sig = 0;
@@ -50,8 +62,15 @@ void Covariance(int threads) {
       ++n;
     }
     const double mean = n ? sum / n : 0, sd = n ? std::sqrt(sum2 / n - mean * mean) : 0;
-    std::printf("| %s | %.2f | %.2f | %d | %.2f | %.3f | %.3f |\n", hull::CovarianceMethodName(r.covariance_method),
-                r.seconds, r.covariance_seconds, n, n ? 1000 * sig / n : 0.0, mean, sd);
+    std::printf("| %s | %.2f | %.2f | %.2f | %d | %.2f | %.3f | %.3f |\n",
+                hull::CovarianceMethodName(r.covariance_method), r.seconds, r.covariance_seconds,
+                r.covariance_cpu_seconds, n, n ? 1000 * sig / n : 0.0, mean, sd);
+    if (!r.covariance_note.empty()) std::printf("  note: %s\n", r.covariance_note.c_str());
+    if (r.covariance_reduced_size) {
+      std::printf("  reduced system: %zu columns, factor %zu nonzeros\n", r.covariance_reduced_size,
+                  r.covariance_factor_nonzeros);
+    }
+    std::fflush(stdout);
   }
 }
 
@@ -88,8 +107,11 @@ void Compare(int threads) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int threads = 0;
+  int threads = 0, max_iterations = 0;
   bool covariance = true, compare = true;
+  std::string preset = "demo";
+  std::vector<hull::CovarianceMethod> methods = {hull::CovarianceMethod::kNone, hull::CovarianceMethod::kConditional,
+                                                 hull::CovarianceMethod::kFull, hull::CovarianceMethod::kFullSparseQr};
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       threads = std::atoi(argv[++i]);
@@ -97,12 +119,22 @@ int main(int argc, char** argv) {
       covariance = false;
     } else if (!std::strcmp(argv[i], "--skip-compare")) {
       compare = false;
+    } else if (!std::strcmp(argv[i], "--max-iterations") && i + 1 < argc) {
+      max_iterations = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--preset") && i + 1 < argc) {
+      preset = argv[++i];
+    } else if (!std::strcmp(argv[i], "--methods") && i + 1 < argc) {
+      methods.clear();
+      std::stringstream list(argv[++i]);
+      for (std::string name; std::getline(list, name, ',');) methods.push_back(hull::ParseCovarianceMethod(name));
     } else {
-      std::fprintf(stderr, "usage: bench_trust [--threads N] [--skip-covariance] [--skip-compare]\n");
+      std::fprintf(stderr,
+                   "usage: bench_trust [--threads N] [--skip-covariance] [--skip-compare] [--preset NAME] "
+                   "[--methods none,conditional,full,full-qr] [--max-iterations N]\n");
       return 2;
     }
   }
-  if (covariance) Covariance(threads);
+  if (covariance) Covariance(threads, preset, methods, max_iterations);
   if (compare) Compare(threads);
   return 0;
 }

@@ -2,6 +2,7 @@
 // issue asks it to show (Ozog et al., Section 4.1), for stereo and mono.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -205,6 +206,39 @@ TEST_P(AdjustSurvey, DeviationSigmaIsHonest) {
   EXPECT_EQ(r.covariance_method, CovarianceMethod::kFull) << r.covariance_note;
   EXPECT_GE(sd, 0.8);
   EXPECT_LE(sd, 1.25);
+}
+
+// The default covariance (the Schur complement) gives the same matrices as
+// Ceres' sparse QR on the demo survey: both adjustments on one thread, so
+// their solutions are identical.
+TEST(AdjustSurveyCovariance, SchurMatchesSparseQrOnTheDemo) {
+  const SurveyBundle& b = Get("demo").survey.bundle;
+  const Pose guess = Pose::FromVector(*b.manifest.model_pose_guess);
+  NullProgress p;
+  AdjustmentOptions o;
+  o.num_threads = 1;
+  o.covariance = CovarianceMethod::kFull;
+  const AdjustmentResult schur = RunAdjustment(b, Get("demo").survey.cad, guess, o, p);
+  o.covariance = CovarianceMethod::kFullSparseQr;
+  const AdjustmentResult qr = RunAdjustment(b, Get("demo").survey.cad, guess, o, p);
+  ASSERT_EQ(schur.covariance_method, CovarianceMethod::kFull) << schur.covariance_note;
+  ASSERT_EQ(qr.covariance_method, CovarianceMethod::kFullSparseQr) << qr.covariance_note;
+  ASSERT_EQ(schur.landmarks.size(), qr.landmarks.size());
+  double worst = 0, worst_sigma = 0;
+  for (std::size_t i = 0; i < schur.landmarks.size(); ++i) {
+    const LandmarkEstimate &a = schur.landmarks[i], &c = qr.landmarks[i];
+    ASSERT_EQ(a.p, c.p) << "the two adjustments differ";
+    ASSERT_TRUE(a.covariance.allFinite() && std::isfinite(a.sigma_h)) << i;
+    worst = std::max(worst, (a.covariance - c.covariance).cwiseAbs().maxCoeff() / c.covariance.cwiseAbs().maxCoeff());
+    worst_sigma = std::max(worst_sigma, std::abs(a.sigma_h - c.sigma_h) / c.sigma_h);
+  }
+  std::printf(
+      "[demo] %zu landmarks: Schur %.2f s (%.2f s CPU), sparse QR %.2f s (%.2f s CPU); covariances within %.2e, "
+      "sigma_h within %.2e (relative)\n",
+      schur.landmarks.size(), schur.covariance_seconds, schur.covariance_cpu_seconds, qr.covariance_seconds,
+      qr.covariance_cpu_seconds, worst, worst_sigma);
+  EXPECT_LT(worst, 1e-6);
+  EXPECT_LT(worst_sigma, 1e-6);
 }
 
 TEST(AdjustResults, WriteReadRoundTrip) {
