@@ -189,10 +189,10 @@ int main(int argc, char** argv) {
   const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)");
 
   auto row = [](const char* what, const RunFigures& f) {
-    std::printf("| %s | %zu | %.2f %% | %.4f m | %.4f m | %d of %d | %d | %+.3f m | %+.3f m | %.3f m | %.0f s |\n",
+    std::printf("| %s | %zu | %.2f %% | %.4f m | %.4f m | %d of %d | %d | %d | %+.3f m | %+.3f m | %.3f m | %.0f s |\n",
                 what, f.landmarks, 100.0 * f.evaluation.label_agreement, f.evaluation.landmark_rmse,
                 f.evaluation.landmark_rmse_hull, f.objects.found, f.objects.required, f.objects.false_objects,
-                f.objects.cylinder_error, f.objects.box_error, f.objects.worst_error, f.seconds);
+                f.objects.within_1cm, f.objects.cylinder_error, f.objects.box_error, f.objects.worst_error, f.seconds);
   };
   std::printf("\n%s, tau %.2f m, objects >= %.2f m required:\n", preset.c_str(), tau, min_height);
   std::printf(
