@@ -149,6 +149,72 @@ std::vector<char> RansacRigid(const std::vector<Eigen::Vector3d>& pa, const std:
   return best_mask;
 }
 
+// Whether the point seen along unit rays ra (camera a) and rb (camera b)
+// lies in front of both for the motion p_b = R p_a + t.
+bool InFrontOfBoth(const Eigen::Matrix3d& R, const Eigen::Vector3d& t, const Eigen::Vector3d& ra,
+                   const Eigen::Vector3d& rb) {
+  Eigen::Matrix<double, 3, 2> A;
+  A.col(0) = R * ra;
+  A.col(1) = -rb;
+  const Eigen::Vector2d depth = A.colPivHouseholderQr().solve(-t);
+  return depth(0) > 0 && depth(1) > 0;
+}
+
+// A near-planar scene (a stretch of hull seen by one camera) fits more than
+// one essential matrix, and the 5-point RANSAC may return one whose motion is
+// not the vehicle's (recoverPose then reports a rotation far from the prior).
+// The plane's homography decomposes into up to four motions (Faugeras and
+// Lustman; cv::decomposeHomographyMat): the one nearest the navigation prior
+// is taken if it agrees with it, and every putative match is then judged by
+// its Sampson distance to that motion's epipolar geometry and by cheirality,
+// so points off the plane (fouling, objects) stay inliers.
+bool PlanarMotionNearThePrior(const std::vector<cv::Point2d>& pa, const std::vector<cv::Point2d>& pb,
+                              const Eigen::Matrix3d& K, const Pose& prior_cb_ca, const TemporalOptions& o,
+                              Pose& x_cb_ca, std::vector<char>& mask) {
+  cv::Mat hmask;
+  const cv::Mat H = cv::findHomography(pa, pb, cv::RANSAC, o.ransac_threshold, hmask, 2000, o.ransac_confidence);
+  if (H.empty()) return false;
+  cv::Mat Kcv;
+  cv::eigen2cv(K, Kcv);
+  std::vector<cv::Mat> Rs, ts, ns;
+  const int n = cv::decomposeHomographyMat(H, Kcv, Rs, ts, ns);
+  const Eigen::Vector3d tp = prior_cb_ca.translation();
+  double best = o.max_rotation_error_deg * kDeg;
+  bool found = false;
+  for (int i = 0; i < n; ++i) {
+    Eigen::Matrix3d Ri;
+    Eigen::Vector3d ti;
+    cv::cv2eigen(Rs[static_cast<std::size_t>(i)], Ri);
+    cv::cv2eigen(ts[static_cast<std::size_t>(i)], ti);
+    if (!(ti.norm() > 1e-12)) continue;
+    ti.normalize();
+    const Pose cand(Ri, ti);
+    const double rot = Pose::AngleBetween(cand, prior_cb_ca);
+    if (rot > best) continue;
+    if (tp.norm() > 0.01 && AngleBetweenDirections(ti, tp) > o.max_direction_error_deg * kDeg) continue;
+    best = rot;
+    x_cb_ca = cand;
+    found = true;
+  }
+  if (!found) return false;
+  const Eigen::Matrix3d R = x_cb_ca.rotation();
+  const Eigen::Vector3d t = x_cb_ca.translation();
+  Eigen::Matrix3d tx;
+  tx << 0, -t.z(), t.y(), t.z(), 0, -t.x(), -t.y(), t.x(), 0;
+  const Eigen::Matrix3d Kinv = K.inverse();
+  const Eigen::Matrix3d F = Kinv.transpose() * tx * R * Kinv;
+  mask.assign(pa.size(), 0);
+  for (std::size_t k = 0; k < pa.size(); ++k) {
+    const Eigen::Vector3d x1(pa[k].x, pa[k].y, 1.0), x2(pb[k].x, pb[k].y, 1.0);
+    const Eigen::Vector3d Fx1 = F * x1, Ftx2 = F.transpose() * x2;
+    const double e = x2.dot(Fx1);
+    const double den = Fx1.x() * Fx1.x() + Fx1.y() * Fx1.y() + Ftx2.x() * Ftx2.x() + Ftx2.y() * Ftx2.y();
+    if (!(den > 0) || e * e / den > o.ransac_threshold * o.ransac_threshold) continue;
+    mask[k] = InFrontOfBoth(R, t, (Kinv * x1).normalized(), (Kinv * x2).normalized()) ? 1 : 0;
+  }
+  return true;
+}
+
 }  // namespace
 
 int RansacDrawsNeeded(double inlier_ratio, int sample_size, double confidence, int max_draws) {
@@ -285,11 +351,22 @@ PairMatches MatchKeyframes(const KeyframeView& a, const KeyframeView& b, const C
     Eigen::Vector3d te;
     cv::cv2eigen(R, Re);
     cv::cv2eigen(t, te);
-    const Pose x_cb_ca(Re, te);
+    Pose x_cb_ca(Re, te);
     r.x_ca_cb = x_cb_ca.Inverse();
     mask.assign(putative.size(), 0);
     for (std::size_t k = 0; k < putative.size(); ++k) mask[k] = inl.at<unsigned char>(static_cast<int>(k)) ? 1 : 0;
     r.inliers = static_cast<int>(std::count(mask.begin(), mask.end(), 1));
+    Pose planar;
+    std::vector<char> planar_mask;
+    if (r.inliers >= o.min_inliers && Pose::AngleBetween(x_cb_ca, prior_cb_ca) > o.max_rotation_error_deg * kDeg &&
+        PlanarMotionNearThePrior(pa, pb, K, prior_cb_ca, o, planar, planar_mask)) {
+      // The essential matrix took the other motion of a near-planar scene.
+      x_cb_ca = planar;
+      mask = planar_mask;
+      r.x_ca_cb = x_cb_ca.Inverse();
+      r.inliers = static_cast<int>(std::count(mask.begin(), mask.end(), 1));
+      te = x_cb_ca.translation();
+    }
     if (r.inliers >= o.min_inliers) {
       const double rot = Pose::AngleBetween(x_cb_ca, prior_cb_ca);
       const Eigen::Vector3d tp = prior_cb_ca.translation();

@@ -135,6 +135,29 @@ TEST(TemporalMatching, StereoRigidRansacSurvivesABadFirstDraw) {
   EXPECT_LT(Pose::AngleBetween(r.x_ca_cb, truth), 0.3 * M_PI / 180);
 }
 
+// A plane seen by one camera (a flat stretch of hull) fits two motions; the
+// one the essential matrix gives may not be the vehicle's, and the planar
+// homography's motion nearest the prior is taken then. Every pair of a
+// planar mono survey is accepted with the true motion.
+TEST(TemporalMatching, MonoOnAPlaneTakesTheMotionOfThePrior) {
+  const VisionScene s = MakeVisionScene(false, false, 4);
+  FrontEndOptions o;
+  int accepted = 0;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = i + 1; j < std::min(i + 3, 4); ++j) {
+      const KeyframeView a = MakeView(s, i, o), b = MakeView(s, j, o);
+      const PairMatches r = MatchKeyframes(a, b, s.manifest.camera, o.temporal);
+      EXPECT_TRUE(r.accepted) << i << "-" << j << ": " << r.note;
+      if (!r.accepted) continue;
+      ++accepted;
+      EXPECT_GE(Precision(s, i, j, a, b, r.matches), 0.95);
+      const Pose truth = s.TruePose(i).Inverse() * s.TruePose(j);
+      EXPECT_LT(Pose::AngleBetween(r.x_ca_cb, truth), 1.0 * M_PI / 180) << i << "-" << j;
+    }
+  }
+  EXPECT_EQ(accepted, 5);
+}
+
 TEST(TemporalMatching, MonoEssentialMatrixIsPreciseAndAgreesWithThePrior) {
   const VisionScene s = MakeVisionScene(false, true, 3);
   FrontEndOptions o;
