@@ -11,7 +11,7 @@
 
 #include "adjust/adjust_options.h"
 #include "mapping/mapping_options.h"
-#include "mosaic/photomosaic.h"
+#include "mosaic/mosaic_options.h"
 #include "ui/session/parameters.h"
 #include "vision/vision_options.h"
 
