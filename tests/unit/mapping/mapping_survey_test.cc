@@ -56,21 +56,6 @@ struct Case {
   Eigen::Vector3d ToTrue(const Eigen::Vector3d& p) const { return est_to_true * p; }
 };
 
-Pose GaugeAlignment(const SurveyBundle& b, const AdjustmentResult& r) {
-  std::map<std::int64_t, Eigen::Vector3d> truth;
-  const Pose true_Mg = Pose::FromVector(b.truth->x_gM).Inverse();
-  for (const auto& l : b.truth->landmarks) truth[l.landmark] = true_Mg * l.p;
-  const Pose est_Mg = Pose::FromVector(r.x_gM).Inverse();
-  Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(r.landmarks.size())), dst = src;
-  Eigen::Index n = 0;
-  for (const auto& l : r.landmarks) {
-    src.col(n) = est_Mg * l.p;
-    dst.col(n) = truth.at(l.id);
-    ++n;
-  }
-  return Pose::FromMatrix(Eigen::umeyama(src, dst, false));
-}
-
 Case& GetCase(const std::string& preset) {
   static std::map<std::string, std::unique_ptr<Case>> cache;
   auto it = cache.find(preset);
@@ -80,7 +65,7 @@ Case& GetCase(const std::string& preset) {
   c->survey = SimulateSurvey(SurveyPreset(preset), p);
   c->adjustment = RunAdjustment(c->survey.bundle, c->survey.cad,
                                 Pose::FromVector(*c->survey.bundle.manifest.model_pose_guess), AdjustmentOptions{}, p);
-  c->est_to_true = GaugeAlignment(c->survey.bundle, c->adjustment);
+  c->est_to_true = GaugeFitToTruth(c->survey.bundle, c->adjustment);
   std::printf("[%s] adjusted model frame vs the true one: %.3f m, %.3f deg (the survey's gauge)\n", preset.c_str(),
               c->est_to_true.translation().norm(), Pose::AngleBetween(c->est_to_true, Pose()) * 180 / M_PI);
   for (const Params params : {Params::kPaper, Params::kDense}) {
