@@ -1,5 +1,7 @@
 #include "step_iges/cad_tessellation.h"
 
+#include "step_iges/step_references.h"
+
 #include <BRepBuilderAPI_Sewing.hxx>
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <BRep_Tool.hxx>
@@ -131,6 +133,9 @@ std::string Format(const char* fmt, double v) {
 // the unit the file declares.
 TopoDS_Shape ReadShape(const std::string& path, CadFormat format, const CollectMessages& messages, std::string* unit) {
   if (format == CadFormat::kStep) {
+    // OpenCASCADE's reader follows references recursively as it loads:
+    // a reference cycle must not reach it.
+    RefuseReferenceCycles(path);
     STEPControl_Reader reader;
     const IFSelect_ReturnStatus status = reader.ReadFile(path.c_str());
     if (status != IFSelect_RetDone)

@@ -9,6 +9,10 @@
 #   FUZZ_SECONDS   time per harness (default 20)
 #   FUZZ_RUNS      stop each harness after this many executions instead (e.g. 10000000)
 #   FUZZ_JOBS      parallel fuzzing processes per harness (default 1)
+#   FUZZ_SEED      libFuzzer's random seed (default: a new one each run). With
+#                  a fixed seed, one job and a fresh FUZZ_BUILD corpus, a run
+#                  executes the same inputs in the same order on any machine:
+#                  a slower one a prefix of a faster one's (CI sets 1)
 #   FUZZ_BUILD     build folder (default build-fuzz)
 #   FUZZ_NO_BUILD  set to 1 to use the harnesses already built
 # Findings go to $FUZZ_BUILD/fuzz-artifacts/<harness>/; the corpus grown by a
@@ -65,6 +69,7 @@ export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/$src/lsan.supp:print_suppr
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 limit=(-max_total_time="$seconds")
 [ -z "${FUZZ_RUNS:-}" ] || limit=(-runs="$FUZZ_RUNS")
+[ -z "${FUZZ_SEED:-}" ] || limit+=(-seed="$FUZZ_SEED")
 fork=()
 [ "$jobs" -le 1 ] || fork=(-fork="$jobs")
 failed=()

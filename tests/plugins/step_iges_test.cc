@@ -13,6 +13,7 @@
 #include "cad_shapes.h"
 #include "geometry/mesh_io.h"
 #include "plugin/plugin_registry.h"
+#include "step_iges/step_references.h"
 #include "support/test_files.h"
 
 namespace hull {
@@ -190,6 +191,48 @@ TEST_F(StepIges, AnEntityThatFailedToLoadIsRefusedBeforeTranslation) {
     EXPECT_THAT(e.what(), HasSubstr("malformed STEP file: "));
     EXPECT_THAT(e.what(), HasSubstr("entities failed to load"));
   }
+}
+
+// Found by fuzzing: "#77 = ORIENTED_EDGE('',*,*,#77,.T.)", an oriented edge
+// of itself. OpenCASCADE's reader checks an edge loop while it loads the
+// file and follows the edge's start through its edge element, forever: a
+// stack overflow inside OpenCASCADE. The plugin now reads the references
+// from the text first and refuses a cycle, naming its line.
+TEST_F(StepIges, AReferenceCycleIsRefusedBeforeOpenCascadeFollowsIt) {
+  const std::string path = tmp_ / "oriented-edge-of-itself.step";
+  testing::WriteText(path, testing::ReadText(std::string(HI_SOURCE_DIR) +
+                                             "/tests/fuzz/regressions/mesh_step/oriented-edge-of-itself.step"));
+  try {
+    LoadMesh(path);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, path);
+    EXPECT_THAT(e.what(), HasSubstr("malformed STEP file, line 97: entity #77 refers to itself (#77 -> #77)"));
+  }
+}
+
+TEST(StepReferences, CyclesAreFoundThroughStringsCommentsAndComplexInstances) {
+  using step_iges::FindReferenceCycle;
+  const std::string header = "ISO-10303-21;\nHEADER;\nFILE_NAME('a;#1=b','',('x'),(''),'','','');\nENDSEC;\nDATA;\n";
+  // Acyclic: references inside strings and comments are not references.
+  const std::string dag = header +
+                          "#1 = A('#2', #2, (#3, #3));\n"
+                          "/* #3 = B(#1); */\n"
+                          "#2 = ( C(#3) D('it''s #1;') );\n"
+                          "#3 = E(#99, .T., 'x');\nENDSEC;\nEND-ISO-10303-21;\n";
+  EXPECT_TRUE(FindReferenceCycle(dag).entities.empty());
+  // A cycle through three entities, reported from where the search entered it.
+  const std::string cycle = header +
+                            "#1 = A(#2);\n"
+                            "#2 = B('#9;', #3);\n"
+                            "#3 =\n C(#4);\n"
+                            "#4 = D(#2);\nENDSEC;\n";
+  const auto found = FindReferenceCycle(cycle);
+  EXPECT_EQ(found.entities, (std::vector<long>{2, 3, 4, 2}));
+  EXPECT_EQ(found.line, 7);
+  // The shape made by OpenCASCADE has none.
+  const std::string cyl = testing::ReadText(std::string(HI_SOURCE_DIR) + "/tests/fuzz/corpus/mesh_step/cyl.step");
+  EXPECT_TRUE(FindReferenceCycle(cyl).entities.empty());
 }
 
 }  // namespace
