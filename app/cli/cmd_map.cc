@@ -29,7 +29,10 @@ options:
   --eps M              DBSCAN neighbourhood radius (default 0.10)
   --min-points N       DBSCAN core-point count, the point included (default 3)
   --h-min M            objects: minimum height (default 0.03)
-  --min-area M2        objects: minimum footprint area (default 0.01)
+  --min-area M2        objects: minimum footprint area (default 0.01) ...
+  --min-features N     ... or, smaller, N shaped features above h_min over it
+                       (default 3; 0: the area test alone) ...
+  --min-views N        ... held by the shapes of N keyframes (default 2)
   --refine-edge M      edge length of the refined model (default 0.03)
   --fusion-radius M    fuse vertices within M of the camera (default 5)
   --fusion RULE        peaks: a vertex rises to the height --support hits
@@ -53,8 +56,9 @@ int RunMap(const CommandArgs& argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"out", "tau", "alpha", "eps", "min-points", "h-min", "min-area", "refine-edge", "fusion-radius",
-               "fusion", "support", "peak-band", "stations", "bundle", "mesh", "mesh-scale", "threads", "quiet"});
+  a.AllowOnly({"out",          "tau",       "alpha",       "eps",           "min-points", "h-min",   "min-area",
+               "min-features", "min-views", "refine-edge", "fusion-radius", "fusion",     "support", "peak-band",
+               "stations",     "bundle",    "mesh",        "mesh-scale",    "threads",    "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
   const std::string results = a.positionals()[0];
   const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
@@ -66,6 +70,8 @@ int RunMap(const CommandArgs& argv) {
   o.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.dbscan_min_points));
   o.object_min_height = a.GetDouble("h-min", o.object_min_height);
   o.object_min_area = a.GetDouble("min-area", o.object_min_area);
+  o.object_min_features = static_cast<int>(a.GetInt("min-features", o.object_min_features));
+  o.object_min_views = static_cast<int>(a.GetInt("min-views", o.object_min_views));
   o.refine_edge = a.GetDouble("refine-edge", o.refine_edge);
   o.fusion_radius = a.GetDouble("fusion-radius", o.fusion_radius);
   const std::string rule = a.Get("fusion", "peaks");
@@ -101,7 +107,8 @@ int RunMap(const CommandArgs& argv) {
               s.shapes, s.shape_triangles, s.points_clustered, s.points, o.tau);
   std::printf("model: %zu vertices, %zu faces (%.2f m^2 refined to %.3g m edges), %zu vertices fused\n",
               s.model_vertices, s.model_faces, s.refined_area, o.refine_edge, s.vertices_fused);
-  std::printf("%zu objects (h > %.3g m over >= %.3g m^2):\n", r.objects.size(), o.object_min_height, o.object_min_area);
+  std::printf("%zu objects (h > %.3g m over >= %.3g m^2, or over %d+ features from %d+ keyframes):\n", r.objects.size(),
+              o.object_min_height, o.object_min_area, o.object_min_features, o.object_min_views);
   for (const auto& obj : r.objects) {
     std::printf(
         "  %-7s %7.2f m from the bow, station %2d %-9s  %.3f m^2, height mean %.3f max %.3f m, %d features, "

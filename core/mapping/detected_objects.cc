@@ -62,6 +62,18 @@ double PeakSigma(const Component& c, const TriangleMesh& prior, const Pose& x_Mg
   return sigma;
 }
 
+// An object: a footprint of at least object_min_area, or (smaller) at least
+// object_min_features of the run's shaped features over it standing above
+// h_min, held by the shapes of at least object_min_views keyframes.
+bool KeepComponent(const Component& c, const MappingInput& input, const MappingOptions& o) {
+  if (!(c.area > 0)) return false;
+  if (c.area >= o.object_min_area) return true;
+  if (o.object_min_features <= 0) return false;
+  int high = 0;
+  for (const int l : c.landmarks) high += input.landmarks[static_cast<std::size_t>(l)].deviation > o.object_min_height;
+  return high >= o.object_min_features && static_cast<int>(c.keyframes.size()) >= o.object_min_views;
+}
+
 }  // namespace
 
 ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<double>& deviation,
@@ -133,23 +145,7 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
     for (const int v : F) z.max_height = std::max(z.max_height, deviation[static_cast<std::size_t>(v)]);
   }
 
-  // Keep the large enough ones, ordered from the bow aft.
-  std::vector<int> kept;
-  for (std::size_t i = 0; i < comps.size(); ++i) {
-    if (comps[i].area > 0 && comps[i].area >= o.object_min_area) kept.push_back(static_cast<int>(i));
-  }
-  auto centroid = [&](int i) -> Eigen::Vector3d {
-    const Component& c = comps[static_cast<std::size_t>(i)];
-    return c.first / c.area;
-  };
-  std::sort(kept.begin(), kept.end(), [&](int a, int b) {
-    const double da = hull.DistanceFromBow(centroid(a)), db = hull.DistanceFromBow(centroid(b));
-    if (da != db) return da < db;
-    return a < b;
-  });
-  for (std::size_t k = 0; k < kept.size(); ++k) comps[static_cast<std::size_t>(kept[k])].object = static_cast<int>(k);
-
-  // Features over each footprint (nearest model vertex in the region), and
+  // Features over each region (nearest model vertex in the region), and
   // the keyframes whose shapes hold them.
   const Pose x_Mg = input.x_gM.Inverse();
   std::set<int> used;
@@ -163,7 +159,7 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
     const auto nearest = prior_index.NearestOne(x_Mg * input.landmarks[static_cast<std::size_t>(l)].p_g);
     if (nearest.first < 0) continue;
     const int c = comp_of[static_cast<std::size_t>(nearest.first)];
-    if (c < 0 || comps[static_cast<std::size_t>(c)].object < 0) continue;
+    if (c < 0) continue;
     landmark_comp[static_cast<std::size_t>(l)] = c;
     comps[static_cast<std::size_t>(c)].landmarks.insert(l);
   }
@@ -175,6 +171,24 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
       }
     }
   }
+
+  // Keep the large enough ones and the small ones that enough features
+  // standing above h_min, seen from enough keyframes, hold up (a tall narrow
+  // lump); order them from the bow aft.
+  std::vector<int> kept;
+  for (std::size_t i = 0; i < comps.size(); ++i) {
+    if (KeepComponent(comps[i], input, o)) kept.push_back(static_cast<int>(i));
+  }
+  auto centroid = [&](int i) -> Eigen::Vector3d {
+    const Component& c = comps[static_cast<std::size_t>(i)];
+    return c.first / c.area;
+  };
+  std::sort(kept.begin(), kept.end(), [&](int a, int b) {
+    const double da = hull.DistanceFromBow(centroid(a)), db = hull.DistanceFromBow(centroid(b));
+    if (da != db) return da < db;
+    return a < b;
+  });
+  for (std::size_t k = 0; k < kept.size(); ++k) comps[static_cast<std::size_t>(kept[k])].object = static_cast<int>(k);
 
   for (const int i : kept) {
     Component& c = comps[static_cast<std::size_t>(i)];

@@ -1,7 +1,9 @@
 // Detected objects: the connected regions of the fused model whose deviation
-// from the CAD surface exceeds h_min over at least a minimum footprint,
-// each merging every view that saw it; and the area they cover per hull
-// zone (for the fouling assessment).
+// from the CAD surface exceeds h_min over at least a minimum footprint (or,
+// smaller, that enough shaped features above h_min from enough keyframes
+// hold up: MappingOptions::object_min_features, object_min_views), each
+// merging every view that saw it; and the area they cover per hull zone
+// (for the fouling assessment).
 #pragma once
 
 #include <cmath>

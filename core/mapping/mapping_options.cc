@@ -32,6 +32,9 @@ void MappingOptions::Check() const {
   Require(Finite(significance_k) && significance_k > 0, "significance_k", "must be positive");
   Require(Finite(object_min_height) && object_min_height > 0, "object_min_height", "must be positive (m)");
   Require(Finite(object_min_area) && object_min_area >= 0, "object_min_area", "must be >= 0 m^2");
+  Require(object_min_features >= 0 && object_min_features <= 100000, "object_min_features",
+          "must be between 0 and 100000 (0: the area test alone)");
+  Require(object_min_views >= 1 && object_min_views <= 100000, "object_min_views", "must be between 1 and 100000");
   Require(stations >= 1 && stations <= 1000, "stations", "must be between 1 and 1000");
   Require(Finite(bottom_angle_deg) && bottom_angle_deg > 0 && bottom_angle_deg < 90, "bottom_angle_deg",
           "must be between 0 and 90 degrees (exclusive)");

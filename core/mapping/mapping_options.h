@@ -57,8 +57,18 @@ struct MappingOptions {
   // A detected object is a connected region of the fused model whose
   // deviation exceeds object_min_height (h_min) ...
   double object_min_height = 0.03;
-  // ... over at least this footprint area.
+  // ... over at least this footprint area, ...
   double object_min_area = 0.01;
+  // ... or, over a smaller footprint, held up by at least this many of the
+  // run's shaped features (vertices of Algorithm 1's shapes) lying over it
+  // and standing above h_min, ...
+  int object_min_features = 3;
+  // ... that the shapes of at least this many keyframes hold: a tall narrow
+  // lump whose footprint above h_min is below object_min_area is still an
+  // object when several features seen from several views measured it, while
+  // a blip raised by one or two features is not. object_min_features = 0
+  // keeps the area test alone.
+  int object_min_views = 2;
 
   // ---- Fouling assessment --------------------------------------------------------
   // Stations along the hull's length (zones are station x {bottom, port,

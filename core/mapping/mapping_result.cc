@@ -45,6 +45,8 @@ Json OptionsJson(const MappingOptions& o) {
   j.Set("refine_margin", o.refine_margin);
   j.Set("object_min_height", o.object_min_height);
   j.Set("object_min_area", o.object_min_area);
+  j.Set("object_min_features", o.object_min_features);
+  j.Set("object_min_views", o.object_min_views);
   j.Set("stations", o.stations);
   j.Set("bottom_angle_deg", o.bottom_angle_deg);
   j.Set("inspection_spacing", o.inspection_spacing);

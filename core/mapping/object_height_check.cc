@@ -181,6 +181,36 @@ std::vector<ObjectHeightCheck> CheckObjectHeights(const TriangleMesh& model, con
   return out;
 }
 
+FoundObjects CountFoundObjects(const std::vector<ObjectHeightCheck>& checks, const std::vector<DetectedObject>& objects,
+                               double min_height) {
+  FoundObjects f;
+  std::set<std::string> on_truth;
+  for (const ObjectHeightCheck& c : checks) {
+    on_truth.insert(c.detected_as.begin(), c.detected_as.end());
+    if (c.height < min_height) continue;
+    ++f.required;
+    if (c.detected_as.empty()) {
+      f.missed.push_back(c.id);
+    } else {
+      ++f.found;
+    }
+  }
+  for (const DetectedObject& d : objects) {
+    if (!on_truth.count(d.id)) f.false_objects.push_back(d.id);
+  }
+  return f;
+}
+
+std::string FoundObjects::ToString() const {
+  auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("none") : s;
+  };
+  return "found " + std::to_string(found) + " of " + std::to_string(required) + " (missed: " + join(missed) +
+         "); false objects: " + std::to_string(false_objects.size()) + " (" + join(false_objects) + ")\n";
+}
+
 std::string ObjectHeightTable(const std::vector<ObjectHeightCheck>& checks, double min_height, double tolerance) {
   std::string s =
       "| object | true height | true max in its region | model max | error | model p95 | features: highest, 2nd | "

@@ -74,6 +74,20 @@ std::vector<ObjectHeightCheck> CheckObjectHeights(const TriangleMesh& model, con
                                                   const std::vector<TriangleMesh>& object_meshes, const MeshIndex& cad,
                                                   const std::vector<KeyframeShapes>* shapes = nullptr);
 
+// Found and false objects (issue 10's "every object >= 6 cm found, none
+// false"): a true object of at least min_height is found when a detected
+// object has a vertex in its region (so a detected object holding several
+// touching lumps finds each of them); a detected object with a vertex in no
+// true object's region is false.
+struct FoundObjects {
+  int required = 0, found = 0;
+  std::vector<std::string> missed;         // true objects of at least min_height that no detected object covers
+  std::vector<std::string> false_objects;  // detected objects on no true object
+  std::string ToString() const;            // one line
+};
+FoundObjects CountFoundObjects(const std::vector<ObjectHeightCheck>& checks, const std::vector<DetectedObject>& objects,
+                               double min_height);
+
 // A table, one row per object, and a summary line counting the objects of
 // at least `min_height` whose model max lies within `tolerance` of true_max.
 std::string ObjectHeightTable(const std::vector<ObjectHeightCheck>& checks, double min_height, double tolerance);

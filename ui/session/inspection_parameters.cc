@@ -198,7 +198,14 @@ ParameterTable MakeTable() {
                                   "CAD surface ...")));
   t.push_back(Real(QStringLiteral("object_min_area"), kMap, Stage::kMapping, QStringLiteral("Object min. area"), 0.0,
                    10.0, m.object_min_area, 3, 0.005, QStringLiteral("m²"),
-                   QStringLiteral("... over at least this footprint area.")));
+                   QStringLiteral("... over at least this footprint area, ...")));
+  t.push_back(Integer(QStringLiteral("object_min_features"), kMap, Stage::kMapping,
+                      QStringLiteral("Object min. features"), 0, 100000, m.object_min_features,
+                      QStringLiteral("... or, over a smaller footprint, held up by at least this many shaped features "
+                                     "standing above h_min (0: the area test alone) ...")));
+  t.push_back(Integer(QStringLiteral("object_min_views"), kMap, Stage::kMapping, QStringLiteral("Object min. views"), 1,
+                      100000, m.object_min_views,
+                      QStringLiteral("... that the shapes of at least this many keyframes hold.")));
   AddFrontEndFields(t);
   t.push_back(Real(QStringLiteral("significance_k"), kMap, Stage::kNone, QStringLiteral("Significance k"), 0.1, 10.0,
                    m.significance_k, 2, 0.1, {},
@@ -348,6 +355,8 @@ MappingOptions MappingOptionsFrom(const ParameterValues& values) {
   o.dbscan_min_points = values.value(QStringLiteral("dbscan_min_points"), o.dbscan_min_points).toInt();
   o.object_min_height = values.value(QStringLiteral("object_min_height"), o.object_min_height).toDouble();
   o.object_min_area = values.value(QStringLiteral("object_min_area"), o.object_min_area).toDouble();
+  o.object_min_features = values.value(QStringLiteral("object_min_features"), o.object_min_features).toInt();
+  o.object_min_views = values.value(QStringLiteral("object_min_views"), o.object_min_views).toInt();
   o.significance_k = values.value(QStringLiteral("significance_k"), o.significance_k).toDouble();
   return o;
 }

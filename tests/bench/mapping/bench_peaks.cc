@@ -1,12 +1,15 @@
 // Object heights and survey change end to end (issue 12, parts 1 and 4;
 // docs/benchmarks.md, "Peaks per true object"):
 //   bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]
+//               [--min-features N]
 // The preset is simulated and written as a bundle (as `hullinspect-cli
 // simulate` writes it), read back and run through the whole pipeline with
 // its default options (as `hullinspect-cli run`: alignment, max-mixture
 // adjustment, mapping). Then, per true object, the fused model's max height
 // over the object's footprint against the true surface there
-// (mapping/object_height_check.h). With --pair, the preset's second survey
+// (mapping/object_height_check.h), and the objects >= 6 cm found and the
+// detected objects on no true object (false). --min-features N sets
+// MappingOptions::object_min_features (0: the area test alone). With --pair, the preset's second survey
 // (2 patches grown by 5 cm, the last object removed, 2 new) too, and
 // CompareSurveys (as `hullinspect-cli compare`) judged against the truth:
 // every new, removed and >= 3 cm grown object reported, none false, the
@@ -112,7 +115,7 @@ void Explain(const std::vector<hull::ObjectHeightCheck>& checks, const std::stri
 // `reuse` and both there, the adjustment is read back and only the mapping
 // runs (as `hullinspect-cli map` would on it).
 Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, const fs::path& dir, int threads,
-              bool reuse, const std::string& explain) {
+              bool reuse, const std::string& explain, int min_features) {
   hull::NullProgress p;
   Survey s;
   s.sim = hull::SimulateSurvey(so, p);
@@ -123,6 +126,7 @@ Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, 
   hull::PipelineOptions o;
   o.adjustment.num_threads = threads;
   o.mapping.num_threads = threads;
+  if (min_features >= 0) o.mapping.object_min_features = min_features;
   const auto t = Clock::now();
   if (reuse) {
     s.adjustment = hull::ReadAdjustmentResult(adjustment);
@@ -143,6 +147,7 @@ Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, 
   s.checks = hull::CheckObjectHeights(m.model, m.objects, in_map, s.to_true, s.sim.bundle.truth->objects,
                                       s.sim.object_meshes, cad, &m.keyframes);
   std::printf("%s", hull::ObjectHeightTable(s.checks, 0.06, 0.01).c_str());
+  std::printf("objects of at least 0.06 m: %s", hull::CountFoundObjects(s.checks, m.objects, 0.06).ToString().c_str());
   if (!explain.empty()) Explain(s.checks, explain, in_map, m);
   return s;
 }
@@ -261,7 +266,7 @@ void ComparePair(const Survey& a, const Survey& b) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int threads = 0;
+  int threads = 0, min_features = -1;
   bool pair = false, reuse = false;
   std::string explain;
   std::string preset = "demo", keep;
@@ -274,6 +279,8 @@ int main(int argc, char** argv) {
       keep = argv[++i];
     } else if (!std::strcmp(argv[i], "--explain") && i + 1 < argc) {
       explain = argv[++i];
+    } else if (!std::strcmp(argv[i], "--min-features") && i + 1 < argc) {
+      min_features = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--reuse")) {
       reuse = true;
     } else if (!std::strcmp(argv[i], "--pair")) {
@@ -281,7 +288,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(
           stderr,
-          "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]\n");
+          "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT] "
+          "[--min-features N]\n");
       return 2;
     }
   }
@@ -289,13 +297,14 @@ int main(int argc, char** argv) {
       keep.empty() ? fs::temp_directory_path() / ("bench_peaks-" + std::to_string(::getpid())) : fs::path(keep);
   fs::create_directories(dir);
   const hull::SurveySimulationOptions oa = hull::SurveyPreset(preset);
-  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain);
+  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, min_features);
   if (pair) {
     hull::SurveySimulationOptions ob = oa;
     ob.changes.grow = 2;
     ob.changes.remove = 1;
     ob.changes.add = 2;
-    const Survey b = RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain);
+    const Survey b =
+        RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain, min_features);
     ComparePair(a, b);
   }
   if (keep.empty()) fs::remove_all(dir);

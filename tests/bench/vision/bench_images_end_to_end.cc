@@ -13,10 +13,12 @@
 // may sit centimetres to decimetres from the truth in M with no object wrong.
 //
 //   bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N]
-//                           [--tau M] [--threads N] [--keep DIR [--reuse]]
+//                           [--tau M] [--threads N] [--min-features N] [--keep DIR [--reuse]]
 // --keep DIR keeps both bundles (DIR/given, DIR/images; the front end's
 // features.csv and match-graph.csv written into DIR/images); --reuse then
 // starts from them (no rendering, no front end) to score other options.
+// --min-features N sets MappingOptions::object_min_features (0: the area
+// test alone, the detection before small supported objects were kept).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -57,6 +59,8 @@ ObjectScore ScoreObjects(const PipelineInputs& in, const PipelineResult& r, cons
       m.model, m.objects, MappingInputFromAdjustment(r.adjustment, in.bundle), GaugeFitToTruth(in.bundle, r.adjustment),
       sim.bundle.truth->objects, sim.object_meshes, cad, &m.keyframes);
   std::printf("%s", ObjectHeightTable(checks, min_height, 0.01).c_str());
+  std::printf("objects of at least %.2f m: %s", min_height,
+              CountFoundObjects(checks, m.objects, min_height).ToString().c_str());
   ObjectScore s;
   std::set<std::string> true_ones;
   for (const ObjectHeightCheck& c : checks) {
@@ -122,7 +126,7 @@ int main(int argc, char** argv) {
   std::string preset = "demo", keep;
   bool reuse = false;
   double camera_scale = 0.5, tau = 0.06, min_height = 0.06;
-  int seed = 1, threads = 2;
+  int seed = 1, threads = 2, min_features = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -142,6 +146,8 @@ int main(int argc, char** argv) {
       tau = std::atof(value().c_str());
     } else if (a == "--threads") {
       threads = std::atoi(value().c_str());
+    } else if (a == "--min-features") {
+      min_features = std::atoi(value().c_str());
     } else if (a == "--keep") {
       keep = value();
     } else if (a == "--reuse") {
@@ -149,7 +155,7 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
-                   "[--threads N] [--keep DIR [--reuse]]\n");
+                   "[--threads N] [--min-features N] [--keep DIR [--reuse]]\n");
       return 2;
     }
   }
@@ -185,6 +191,7 @@ int main(int argc, char** argv) {
   o.adjustment.num_threads = threads;
   o.adjustment.covariance = CovarianceMethod::kNone;  // not what is scored here, and slow on ~10^5 landmarks
   o.mapping.tau = tau;
+  if (min_features >= 0) o.mapping.object_min_features = min_features;
   const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks");
   const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)");
 

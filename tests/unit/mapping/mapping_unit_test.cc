@@ -47,6 +47,8 @@ TEST(MappingOptions, DefaultsPassAndEachBadFieldIsNamed) {
       {"significance_k", [](MappingOptions& o) { o.significance_k = 0; }},
       {"object_min_height", [](MappingOptions& o) { o.object_min_height = 0; }},
       {"object_min_area", [](MappingOptions& o) { o.object_min_area = -1; }},
+      {"object_min_features", [](MappingOptions& o) { o.object_min_features = -1; }},
+      {"object_min_views", [](MappingOptions& o) { o.object_min_views = 0; }},
       {"stations", [](MappingOptions& o) { o.stations = 0; }},
       {"bottom_angle_deg", [](MappingOptions& o) { o.bottom_angle_deg = 90; }},
       {"inspection_spacing", [](MappingOptions& o) { o.inspection_spacing = 0; }},

@@ -1,34 +1,41 @@
 // Detected objects' height uncertainty: max_height_sigma is the sigma_h of
 // the supporting feature nearest to the object's highest vertex
-// (docs/mapping.md, "Objects"), NaN when no supporting feature has one.
+// (docs/mapping.md, "Objects"), NaN when no supporting feature has one; a
+// region smaller than object_min_area is an object when enough features
+// above h_min from enough keyframes hold it up; found and false objects
+// against the truth (CountFoundObjects).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "geometry/mesh_index.h"
 #include "geometry/point_index.h"
 #include "mapping/detected_objects.h"
 #include "mapping/hull_zones.h"
+#include "mapping/object_height_check.h"
 #include "mapping/vertex_significance.h"
 
 namespace hull {
 namespace {
 
 // A flat 2 m x 2 m bottom plate at z = 0 of M (outward normal -z), in 5 cm
-// squares, and a round lump of `height` at the origin (Gaussian, 10 cm radius).
+// squares, and a round lump of `height` at the origin (Gaussian, `radius`
+// its standard deviation).
 struct Plate {
   TriangleMesh mesh;
   std::vector<double> deviation;
 };
 
-Plate MakePlate(double height) {
+Plate MakePlate(double height, double radius = 0.1) {
   Plate p;
   const int n = 41;
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d v(-1.0 + 0.05 * i, -1.0 + 0.05 * j, 0.0);
       p.mesh.vertices.push_back(v);
-      p.deviation.push_back(height * std::exp(-v.head<2>().squaredNorm() / (2 * 0.1 * 0.1)));
+      p.deviation.push_back(height * std::exp(-v.head<2>().squaredNorm() / (2 * radius * radius)));
     }
   }
   for (int j = 0; j + 1 < n; ++j) {
@@ -47,12 +54,12 @@ struct Landmark {
   double sigma_h;
 };
 
-ObjectDetection Detect(const Plate& plate, const std::vector<Landmark>& landmarks) {
+// The landmarks, each a vertex of one shape in each of `keyframes` keyframes
+// (ids 7, 8, ...).
+ObjectDetection Detect(const Plate& plate, const std::vector<Landmark>& landmarks, int keyframes = 1,
+                       const MappingOptions& o = MappingOptions()) {
   MappingInput input;
   input.x_gM = Pose();  // g = M
-  KeyframeShapes k;
-  k.id = 7;
-  DetectedShape shape;
   for (std::size_t i = 0; i < landmarks.size(); ++i) {
     MappingLandmark l;
     l.id = static_cast<std::int64_t>(i);
@@ -60,18 +67,26 @@ ObjectDetection Detect(const Plate& plate, const std::vector<Landmark>& landmark
     l.sigma_h = landmarks[i].sigma_h;
     l.deviation = -landmarks[i].p.z();
     input.landmarks.push_back(l);
-    ShapePoint sp;
-    sp.landmark = static_cast<int>(i);
-    sp.cluster = 0;
-    k.points.push_back(sp);
-    shape.points.push_back(static_cast<int>(i));
   }
-  k.shapes.push_back(shape);
+  std::vector<KeyframeShapes> shapes;
+  for (int kf = 0; kf < keyframes; ++kf) {
+    KeyframeShapes k;
+    k.id = 7 + kf;
+    DetectedShape shape;
+    for (std::size_t i = 0; i < landmarks.size(); ++i) {
+      ShapePoint sp;
+      sp.landmark = static_cast<int>(i);
+      sp.cluster = 0;
+      k.points.push_back(sp);
+      shape.points.push_back(static_cast<int>(i));
+    }
+    k.shapes.push_back(shape);
+    shapes.push_back(k);
+  }
   const HullFrame hull(Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ(), -1.0, 1.0, 4, 45.0);
   const PointIndex prior_index(plate.mesh.vertices);
   const MeshIndex cad_index(plate.mesh);
-  MappingOptions o;
-  return DetectObjects(plate.mesh, plate.deviation, prior_index, cad_index, hull, input, {k}, o);
+  return DetectObjects(plate.mesh, plate.deviation, prior_index, cad_index, hull, input, shapes, o);
 }
 
 TEST(DetectedObjects, HeightSigmaIsTheSupportingFeatureNearestThePeak) {
@@ -96,6 +111,69 @@ TEST(DetectedObjects, HeightSigmaIsNanWithoutFeatureSigmas) {
   const ObjectDetection d = Detect(plate, {{{0.0, 0.0, -0.08}, std::nan("")}, {{0.03, 0.0, -0.07}, 0.0}});
   ASSERT_EQ(d.objects.size(), 1u);
   EXPECT_TRUE(std::isnan(d.objects[0].max_height_sigma));
+}
+
+// A tall narrow lump (0.10 m, 3 cm standard deviation): its footprint
+// above h_min = 3 cm is below object_min_area, so the area test alone drops
+// it; three features above h_min over it, held by the shapes of two
+// keyframes, make it an object (the demo's narrow strip lumps).
+TEST(DetectedObjects, NarrowLumpHeldUpByFeaturesFromSeveralViews) {
+  const Plate plate = MakePlate(0.10, 0.03);
+  const std::vector<Landmark> three = {
+      {{0.0, 0.0, -0.098}, 0.003}, {{0.01, 0.005, -0.09}, 0.003}, {{-0.005, 0.01, -0.09}, 0.003}};
+  MappingOptions area_only;
+  area_only.object_min_features = 0;
+  EXPECT_TRUE(Detect(plate, three, 2, area_only).objects.empty());  // the footprint alone is too small
+
+  const ObjectDetection d = Detect(plate, three, 2);
+  ASSERT_EQ(d.objects.size(), 1u);
+  const DetectedObject& o = d.objects[0];
+  EXPECT_GT(o.area, 0.0);
+  EXPECT_LT(o.area, MappingOptions().object_min_area);
+  EXPECT_NEAR(o.max_height, 0.10, 1e-12);
+  EXPECT_EQ(o.num_features, 3);
+  EXPECT_EQ(o.num_views, 2);
+
+  // One view only, two features only, or a third feature below h_min: no object.
+  EXPECT_TRUE(Detect(plate, three, 1).objects.empty());
+  EXPECT_TRUE(Detect(plate, {three[0], three[1]}, 2).objects.empty());
+  EXPECT_TRUE(Detect(plate, {three[0], three[1], {{0.01, -0.01, -0.02}, 0.003}}, 2).objects.empty());
+  // The thresholds are options.
+  MappingOptions two;
+  two.object_min_features = 2;
+  EXPECT_EQ(Detect(plate, {three[0], three[1]}, 2, two).objects.size(), 1u);
+  MappingOptions three_views;
+  three_views.object_min_views = 3;
+  EXPECT_TRUE(Detect(plate, three, 2, three_views).objects.empty());
+  EXPECT_EQ(Detect(plate, three, 3, three_views).objects.size(), 1u);
+}
+
+// Found: a detected object has a vertex in the true object's region (one
+// detected object may find several touching lumps); false: a detected object
+// in no true object's region; objects below min_height are not required.
+TEST(FoundObjects, CountsFoundMissedAndFalse) {
+  std::vector<ObjectHeightCheck> checks(4);
+  checks[0].id = "strip-1";
+  checks[0].height = 0.13;
+  checks[0].detected_as = {"obj-1"};
+  checks[1].id = "strip-2";
+  checks[1].height = 0.14;
+  checks[1].detected_as = {"obj-1"};
+  checks[2].id = "strip-3";
+  checks[2].height = 0.09;
+  checks[3].id = "low";
+  checks[3].height = 0.04;
+  checks[3].detected_as = {"obj-2"};
+  std::vector<DetectedObject> objects(3);
+  objects[0].id = "obj-1";
+  objects[1].id = "obj-2";
+  objects[2].id = "obj-3";
+  const FoundObjects f = CountFoundObjects(checks, objects, 0.06);
+  EXPECT_EQ(f.required, 3);
+  EXPECT_EQ(f.found, 2);
+  EXPECT_EQ(f.missed, std::vector<std::string>{"strip-3"});
+  EXPECT_EQ(f.false_objects, std::vector<std::string>{"obj-3"});
+  EXPECT_EQ(f.ToString(), "found 2 of 3 (missed: strip-3); false objects: 1 (obj-3)\n");
 }
 
 TEST(VertexSignificance, MaskFollowsK) {
