@@ -107,8 +107,13 @@ int RunMap(const CommandArgs& argv) {
               s.shapes, s.shape_triangles, s.points_clustered, s.points, o.tau);
   std::printf("model: %zu vertices, %zu faces (%.2f m^2 refined to %.3g m edges), %zu vertices fused\n",
               s.model_vertices, s.model_faces, s.refined_area, o.refine_edge, s.vertices_fused);
-  std::printf("%zu objects (h > %.3g m over >= %.3g m^2, or over %d+ features from %d+ keyframes):\n", r.objects.size(),
-              o.object_min_height, o.object_min_area, o.object_min_features, o.object_min_views);
+  if (o.object_min_features > 0) {
+    std::printf("%zu objects (h > %.3g m over >= %.3g m^2, or held by %d+ features from %d+ keyframes):\n",
+                r.objects.size(), o.object_min_height, o.object_min_area, o.object_min_features, o.object_min_views);
+  } else {
+    std::printf("%zu objects (h > %.3g m over >= %.3g m^2):\n", r.objects.size(), o.object_min_height,
+                o.object_min_area);
+  }
   for (const auto& obj : r.objects) {
     std::printf(
         "  %-7s %7.2f m from the bow, station %2d %-9s  %.3f m^2, height mean %.3f max %.3f m, %d features, "

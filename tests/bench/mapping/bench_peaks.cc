@@ -1,7 +1,7 @@
 // Object heights and survey change end to end (issue 12, parts 1 and 4;
 // docs/benchmarks.md, "Peaks per true object"):
 //   bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]
-//               [--min-features N]
+//               [--min-features N] [--tau M]
 // The preset is simulated and written as a bundle (as `hullinspect-cli
 // simulate` writes it), read back and run through the whole pipeline with
 // its default options (as `hullinspect-cli run`: alignment, max-mixture
@@ -9,7 +9,8 @@
 // over the object's footprint against the true surface there
 // (mapping/object_height_check.h), and the objects >= 6 cm found and the
 // detected objects on no true object (false). --min-features N sets
-// MappingOptions::object_min_features (0: the area test alone). With --pair, the preset's second survey
+// MappingOptions::object_min_features (0: the area test alone), --tau M the
+// mapping's tau (default: MappingOptions', 0). With --pair, the preset's second survey
 // (2 patches grown by 5 cm, the last object removed, 2 new) too, and
 // CompareSurveys (as `hullinspect-cli compare`) judged against the truth:
 // every new, removed and >= 3 cm grown object reported, none false, the
@@ -115,7 +116,7 @@ void Explain(const std::vector<hull::ObjectHeightCheck>& checks, const std::stri
 // `reuse` and both there, the adjustment is read back and only the mapping
 // runs (as `hullinspect-cli map` would on it).
 Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, const fs::path& dir, int threads,
-              bool reuse, const std::string& explain, int min_features) {
+              bool reuse, const std::string& explain, int min_features, double tau) {
   hull::NullProgress p;
   Survey s;
   s.sim = hull::SimulateSurvey(so, p);
@@ -127,6 +128,7 @@ Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, 
   o.adjustment.num_threads = threads;
   o.mapping.num_threads = threads;
   if (min_features >= 0) o.mapping.object_min_features = min_features;
+  if (tau >= 0) o.mapping.tau = tau;
   const auto t = Clock::now();
   if (reuse) {
     s.adjustment = hull::ReadAdjustmentResult(adjustment);
@@ -267,6 +269,7 @@ void ComparePair(const Survey& a, const Survey& b) {
 
 int main(int argc, char** argv) {
   int threads = 0, min_features = -1;
+  double tau = -1;
   bool pair = false, reuse = false;
   std::string explain;
   std::string preset = "demo", keep;
@@ -281,6 +284,8 @@ int main(int argc, char** argv) {
       explain = argv[++i];
     } else if (!std::strcmp(argv[i], "--min-features") && i + 1 < argc) {
       min_features = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--tau") && i + 1 < argc) {
+      tau = std::atof(argv[++i]);
     } else if (!std::strcmp(argv[i], "--reuse")) {
       reuse = true;
     } else if (!std::strcmp(argv[i], "--pair")) {
@@ -289,7 +294,7 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT] "
-          "[--min-features N]\n");
+          "[--min-features N] [--tau M]\n");
       return 2;
     }
   }
@@ -297,14 +302,14 @@ int main(int argc, char** argv) {
       keep.empty() ? fs::temp_directory_path() / ("bench_peaks-" + std::to_string(::getpid())) : fs::path(keep);
   fs::create_directories(dir);
   const hull::SurveySimulationOptions oa = hull::SurveyPreset(preset);
-  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, min_features);
+  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, min_features, tau);
   if (pair) {
     hull::SurveySimulationOptions ob = oa;
     ob.changes.grow = 2;
     ob.changes.remove = 1;
     ob.changes.add = 2;
     const Survey b =
-        RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain, min_features);
+        RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain, min_features, tau);
     ComparePair(a, b);
   }
   if (keep.empty()) fs::remove_all(dir);
