@@ -256,7 +256,9 @@ Section MethodSection(const ReportInputs& in) {
     row("h_min", Metres(m.object_min_height), "height that makes part of an object");
     row("Min object area", Num(m.object_min_area, 3) + " m²", "smallest footprint reported ...");
     row("Min object features",
-        std::to_string(m.object_min_features) + " from " + std::to_string(m.object_min_views) + " keyframes",
+        m.object_min_features > 0
+            ? std::to_string(m.object_min_features) + " from " + std::to_string(m.object_min_views) + " keyframes"
+            : std::string("off"),
         "... unless that many features above h_min hold a smaller one up");
     row("Stations", std::to_string(m.stations), "zones: stations × bottom, port, starboard");
     row("Bottom angle", Num(m.bottom_angle_deg, 0) + "°", "outward normal within this of straight down");

@@ -55,10 +55,14 @@ Section ObjectsSection(const ReportInputs& in) {
   }
   const MappingResult& m = *in.mapping;
   if (m.objects.empty()) {
-    s.blocks.push_back(
-        Paragraph(Format("No part of the fused model stands more than %.3f m off the CAD surface over "
-                         "%.3f m² or more: no objects.",
-                         m.options.object_min_height, m.options.object_min_area)));
+    s.blocks.push_back(Paragraph(
+        Format("No part of the fused model stands more than %.3f m off the CAD surface over "
+               "%.3f m² or more%s: no objects.",
+               m.options.object_min_height, m.options.object_min_area,
+               m.options.object_min_features > 0 ? Format(" (nor over less, held up by %d features from %d keyframes)",
+                                                          m.options.object_min_features, m.options.object_min_views)
+                                                       .c_str()
+                                                 : "")));
     return s;
   }
   double area = 0;

@@ -85,7 +85,8 @@ MappingResult ReadMapping(const fs::path& dir, const TriangleMesh& cad, const Ad
   m.options.refine_margin = o.NumberOr("refine_margin", m.options.refine_margin);
   m.options.object_min_height = o.NumberOr("object_min_height", m.options.object_min_height);
   m.options.object_min_area = o.NumberOr("object_min_area", m.options.object_min_area);
-  m.options.object_min_features = static_cast<int>(o.NumberOr("object_min_features", m.options.object_min_features));
+  // Absent from results written before the support test: those used the area test alone.
+  m.options.object_min_features = static_cast<int>(o.NumberOr("object_min_features", 0));
   m.options.object_min_views = static_cast<int>(o.NumberOr("object_min_views", m.options.object_min_views));
   m.options.stations = static_cast<int>(o.NumberOr("stations", m.options.stations));
   m.options.bottom_angle_deg = o.NumberOr("bottom_angle_deg", m.options.bottom_angle_deg);
