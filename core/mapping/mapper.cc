@@ -154,7 +154,7 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   t = Clock::now();
   progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
   SubProgress fusion_progress(progress, 0.5, 0.8);
-  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band};
+  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band, o.fusion_along_normal};
   const FusionResult fused = FuseShapes(prior, *refined->tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
   s.seconds.fusion = Since(t);
 

@@ -37,6 +37,35 @@ bool RayThroughVertex(const Pose& cam, const Pose& cam_inv, const Eigen::Vector3
   return true;
 }
 
+// The same for the fusion along the vertex normal: the segment from the
+// vertex's normal line `reach` outside the vertex to `reach` inside it, in
+// the camera frame, is cast by `cast` (FirstShapeHitOnSegment or
+// ShapeFootprint::SegmentHit); the first hit from outside is the line's
+// outermost point on the shape (what the camera sees of it).
+template <typename Cast>
+bool NormalThroughVertex(const Pose& cam, const Pose& cam_inv, const Eigen::Vector3d& v, const Eigen::Vector3d& normal,
+                         double radius2, double reach, Cast&& cast, Eigen::Vector3d* p) {
+  const Eigen::Vector3d d = v - cam.translation();
+  if (!(d.squaredNorm() <= radius2)) return false;
+  if (!(normal.dot(d) < 0)) return false;  // faces away from the camera
+  const Eigen::Vector3d n_c = cam_inv.Rotate(normal);
+  const Eigen::Vector3d outer = cam_inv * v + reach * n_c;
+  const Eigen::Vector3d dir = -n_c;
+  const ShapeHit h = cast(outer, dir, 2 * reach);
+  if (!h.hit) return false;
+  *p = cam * (outer + h.t * dir);
+  return true;
+}
+
+// Bounding sphere (in the camera frame) of a shape's vertices.
+void ShapeSphere(const DetectedShape& s, Eigen::Vector3d* centre, double* radius) {
+  Eigen::AlignedBox3d box;
+  for (const auto& v : s.vertices_c) box.extend(v);
+  *centre = box.center();
+  *radius = 0;
+  for (const auto& v : s.vertices_c) *radius = std::max(*radius, (v - *centre).norm());
+}
+
 FusionResult Finish(const TriangleMesh& prior, const std::vector<std::vector<Eigen::Vector3d>>& hits,
                     const FusionRule& rule, std::size_t total) {
   FusionResult r;
@@ -98,17 +127,41 @@ FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& tree, co
       const Pose inv = cam.Inverse();
       for (const DetectedShape& s : ks.shapes) {
         const ShapeFootprint fp(s);
-        const Eigen::Vector3d axis = cam.Rotate(fp.axis());
         const std::size_t first = out.size();
-        tree.Query(cam.translation(), radius, axis, fp.cos_half_angle(), fp.sin_half_angle(), fp.narrow(), [&](int i) {
-          Eigen::Vector3d p;
-          if (RayThroughVertex(
-                  cam, inv, prior.vertices[static_cast<std::size_t>(i)],
-                  prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
-                  [&](const Eigen::Vector3d& dir) { return fp.Hit(dir); }, &p)) {
-            out.push_back({i, p});
-          }
-        });
+        if (rule.along_normal) {
+          // A vertex whose normal segment meets the shape lies within the
+          // reach of a point of it.
+          const double reach = NormalReach(s);
+          Eigen::Vector3d centre;
+          double r = 0;
+          ShapeSphere(s, &centre, &r);
+          const double ball = (r + reach) * (1 + 1e-9) + 1e-9;
+          const Eigen::Vector3d none = Eigen::Vector3d::UnitZ();
+          tree.Query(cam * centre, ball, none, 0, 1, false, [&](int i) {
+            Eigen::Vector3d p;
+            if (NormalThroughVertex(
+                    cam, inv, prior.vertices[static_cast<std::size_t>(i)],
+                    prior.vertex_normals[static_cast<std::size_t>(i)], radius2, reach,
+                    [&](const Eigen::Vector3d& o, const Eigen::Vector3d& dir, double t_max) {
+                      return fp.SegmentHit(o, dir, t_max);
+                    },
+                    &p)) {
+              out.push_back({i, p});
+            }
+          });
+        } else {
+          const Eigen::Vector3d axis = cam.Rotate(fp.axis());
+          tree.Query(cam.translation(), radius, axis, fp.cos_half_angle(), fp.sin_half_angle(), fp.narrow(),
+                     [&](int i) {
+                       Eigen::Vector3d p;
+                       if (RayThroughVertex(
+                               cam, inv, prior.vertices[static_cast<std::size_t>(i)],
+                               prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
+                               [&](const Eigen::Vector3d& dir) { return fp.Hit(dir); }, &p)) {
+                         out.push_back({i, p});
+                       }
+                     });
+        }
         // Within a shape each vertex is hit once; sorting only fixes the order
         // in which equal work is done, not the result.
         std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
@@ -144,12 +197,20 @@ FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<P
     }
     std::sort(nearby.begin(), nearby.end());
     for (const DetectedShape& s : ks.shapes) {  // line 6
-      for (const int i : nearby) {              // line 7
+      const double reach = NormalReach(s);
+      for (const int i : nearby) {  // line 7
+        const Eigen::Vector3d& v = prior.vertices[static_cast<std::size_t>(i)];
+        const Eigen::Vector3d& n = prior.vertex_normals[static_cast<std::size_t>(i)];
         Eigen::Vector3d p;
-        if (RayThroughVertex(
-                cam, inv, prior.vertices[static_cast<std::size_t>(i)],
-                prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
-                [&](const Eigen::Vector3d& dir) { return FirstShapeHit(s, dir); }, &p)) {
+        const bool hit = rule.along_normal ? NormalThroughVertex(
+                                                 cam, inv, v, n, radius2, reach,
+                                                 [&](const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                                                     double t_max) { return FirstShapeHitOnSegment(s, o, dir, t_max); },
+                                                 &p)
+                                           : RayThroughVertex(
+                                                 cam, inv, v, n, radius2,
+                                                 [&](const Eigen::Vector3d& dir) { return FirstShapeHit(s, dir); }, &p);
+        if (hit) {
           per_vertex[static_cast<std::size_t>(i)].push_back(p);  // line 11
           ++total;
         }

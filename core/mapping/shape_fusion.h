@@ -14,11 +14,17 @@
 // and a vertex whose normal faces away from the camera (the far side of the
 // hull, which the camera cannot see) is not fused.
 //
-// FuseShapes finds, per shape, only the vertices whose rays can reach it (a
-// cone around the shape over a tree of the vertices, then a 2-D grid over
-// the shape's footprint on the normalised image plane) and runs keyframes
-// in parallel, applying the updates in keyframe and shape order: its result
-// is bit-identical to FuseShapesBruteForce, the paper's loops literally.
+// With FusionRule::along_normal the line cast is not the camera's ray but the line through the prior vertex along its
+// outward normal (the segment within NormalReach of the vertex, shape_raycast.h): a camera ray puts a narrow peak over
+// a different vertex for each view (parallax), the normal puts it over the same vertex for every view, so the views'
+// hits at the peak support each other.
+//
+// FuseShapes finds, per shape, only the vertices whose rays (or normal
+// segments) can reach it (a cone around the shape, or a ball around it
+// grown by the reach, over a tree of the vertices, then a 2-D grid over the
+// shape's footprint on the normalised image plane) and runs keyframes in
+// parallel, applying the updates in keyframe and shape order: its result is
+// bit-identical to FuseShapesBruteForce, the paper's loops literally.
 #pragma once
 
 #include <Eigen/Core>
@@ -42,10 +48,15 @@ namespace hull {
 // that at least `support` hits reach is kept (to within band), while one
 // wrong hit above the rest (a wrong match) cannot raise the vertex, and a
 // vertex with fewer than `support` hits stays where it was.
+//
+// along_normal chooses the line each vertex is fused along (the camera's ray
+// through it, as in the paper, or its normal); it is part of the rule because
+// it decides which hits a vertex gathers.
 struct FusionRule {
-  bool keep_peaks = true;  // false: eq. 15, the mean of every hit
-  int support = 2;         // hits that must reach a height (keep_peaks)
-  double band = 0.005;     // m, hits averaged below h_k (keep_peaks)
+  bool keep_peaks = true;     // false: eq. 15, the mean of every hit
+  int support = 2;            // hits that must reach a height (keep_peaks)
+  double band = 0.005;        // m, hits averaged below h_k (keep_peaks)
+  bool along_normal = false;  // true: the vertex's normal; false: the camera's ray through it (the paper's)
 };
 
 // Eq. 15: the running mean of a vertex's hits.

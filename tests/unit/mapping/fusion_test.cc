@@ -101,31 +101,40 @@ TEST(Fusion, FastEqualsThePapersLoopsBitForBit) {
     const FusionResult fast_mean = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, mean, p);
     EXPECT_EQ(fast_mean.count, brute_mean.count);
     EXPECT_EQ(fast_mean.vertices, brute_mean.vertices);
-    const FusionResult brute = FuseShapesBruteForce(prior, cams, shapes, o.fusion_radius);
-    const FusionResult fast = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, FusionRule{}, p);
-    EXPECT_GT(brute.hits, 500u);
-    EXPECT_EQ(fast.hits, brute.hits);
-    EXPECT_EQ(fast.count, brute.count);
-    EXPECT_EQ(fast.support, brute.support);
-    EXPECT_EQ(fast.vertices, brute.vertices);
-    // A fused vertex rests on its supported hits: on the disk's top 0.1 m
-    // below the CAD (the features' height), elsewhere near the plane.
-    const MeshIndex cad(s.cad);
-    int on_top = 0;
-    for (std::size_t v = 0; v < prior.num_vertices(); ++v) {
-      if (fast.support[v] == 0) {
-        EXPECT_EQ(fast.vertices[v], prior.vertices[v]);
-        continue;
+    // The peak-keeping rule along the camera's rays and along the normals.
+    for (const bool along_normal : {false, true}) {
+      SCOPED_TRACE(along_normal ? "along the normals" : "along the camera's rays");
+      FusionRule rule;
+      rule.along_normal = along_normal;
+      const FusionResult brute = FuseShapesBruteForce(prior, cams, shapes, o.fusion_radius, rule);
+      const FusionResult fast = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, rule, p);
+      EXPECT_GT(brute.hits, 500u);
+      EXPECT_EQ(fast.hits, brute.hits);
+      EXPECT_EQ(fast.count, brute.count);
+      EXPECT_EQ(fast.support, brute.support);
+      EXPECT_EQ(fast.vertices, brute.vertices);
+      // A fused vertex rests on its supported hits: on the disk's top 0.1 m
+      // below the CAD (the features' height), elsewhere near the plane; along
+      // the normal it moves along -z only.
+      int on_top = 0;
+      for (std::size_t v = 0; v < prior.num_vertices(); ++v) {
+        if (fast.support[v] == 0) {
+          EXPECT_EQ(fast.vertices[v], prior.vertices[v]);
+          continue;
+        }
+        if (along_normal) {
+          EXPECT_NEAR((fast.vertices[v] - prior.vertices[v]).head<2>().norm(), 0.0, 1e-9);
+        }
+        const double r = (prior.vertices[v].head<2>() - kDisk).norm();
+        if (r < kRadius - 0.06) {
+          EXPECT_NEAR(-fast.vertices[v].z(), kHeight, 0.002 + 3 * noise);
+          ++on_top;
+        } else if (r > kRadius + 0.15) {
+          EXPECT_NEAR(fast.vertices[v].z(), 0.0, 0.002 + 3 * noise);
+        }
       }
-      const double r = (prior.vertices[v].head<2>() - kDisk).norm();
-      if (r < kRadius - 0.06) {
-        EXPECT_NEAR(-fast.vertices[v].z(), kHeight, 0.002 + 3 * noise);
-        ++on_top;
-      } else if (r > kRadius + 0.15) {
-        EXPECT_NEAR(fast.vertices[v].z(), 0.0, 0.002 + 3 * noise);
-      }
+      EXPECT_GT(on_top, 100);
     }
-    EXPECT_GT(on_top, 100);
   }
 }
 

@@ -404,7 +404,8 @@ void FastFusionEqualsThePapersLoops(const std::string& preset) {
   const TriangleMesh& prior = *mapper.prior_mesh();
   std::vector<Pose> x_M_cT;
   for (const auto& k : mapper.input().keyframes) x_M_cT.push_back(mapper.input().x_gM.Inverse() * k.x_g_cT);
-  const FusionRule rule{last.options.fusion_keep_peaks, last.options.fusion_support, last.options.fusion_peak_band};
+  const FusionRule rule{last.options.fusion_keep_peaks, last.options.fusion_support, last.options.fusion_peak_band,
+                        last.options.fusion_along_normal};
   const FusionResult brute = FuseShapesBruteForce(prior, x_M_cT, last.keyframes, last.options.fusion_radius, rule);
   const FusionResult fast =
       FuseShapes(prior, PointConeTree(prior.vertices), x_M_cT, last.keyframes, last.options.fusion_radius, rule, p);
