@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <functional>
+#include <map>
 
 #include "geometry/point_index.h"
 #include "mapping/shape_raycast.h"
@@ -107,6 +109,84 @@ Eigen::Vector3d CombineHits(const std::vector<Eigen::Vector3d>& hits, const Eige
     if (h[i] <= hk) a.Add(hits[i]);
   }
   return a.value;
+}
+
+int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
+                           const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
+                           double max_move) {
+  // Per landmark: the keyframes whose shapes hold it, its deviation and
+  // position (in g).
+  struct Feature {
+    int keyframes = 0;
+    double deviation = 0;
+    Eigen::Vector3d p_g = Eigen::Vector3d::Zero();
+  };
+  std::map<int, Feature> features;
+  for (const KeyframeShapes& ks : shapes) {
+    for (const DetectedShape& sh : ks.shapes) {
+      for (std::size_t j = 0; j < sh.points.size(); ++j) {
+        if (!(sh.deviation[j] > min_height)) continue;
+        Feature& f = features[ks.points[static_cast<std::size_t>(sh.points[j])].landmark];
+        ++f.keyframes;
+        f.deviation = sh.deviation[j];
+        f.p_g = sh.vertices_g[j];
+      }
+    }
+  }
+  std::vector<std::pair<double, int>> order;  // (-deviation, landmark): highest first
+  for (const auto& [l, f] : features) {
+    if (f.keyframes >= support) order.push_back({-f.deviation, l});
+  }
+  std::sort(order.begin(), order.end());
+  // Faces per vertex (CSR).
+  const std::size_t nv = prior.num_vertices();
+  std::vector<int> start(nv + 1, 0), faces_of;
+  for (const Face& f : prior.faces) {
+    for (const int v : f) ++start[static_cast<std::size_t>(v) + 1];
+  }
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  faces_of.assign(static_cast<std::size_t>(start[nv]), 0);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t f = 0; f < prior.num_faces(); ++f) {
+      for (const int v : prior.faces[f])
+        faces_of[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
+    }
+  }
+  auto normal = [&](int f) {
+    const Face& F = prior.faces[static_cast<std::size_t>(f)];
+    const Eigen::Vector3d& a = prior.vertices[static_cast<std::size_t>(F[0])];
+    return Eigen::Vector3d(
+        (prior.vertices[static_cast<std::size_t>(F[1])] - a).cross(prior.vertices[static_cast<std::size_t>(F[2])] - a));
+  };
+  const double cos_max_turn = std::cos(M_PI / 4);
+  std::vector<char> moved(nv, 0);
+  int count = 0;
+  for (const auto& [neg_deviation, l] : order) {
+    (void)neg_deviation;
+    const Eigen::Vector3d foot = cad.Closest(x_Mg * features.at(l).p_g).point;
+    const auto [v, d2] = prior_index.NearestOne(foot);  // squared distance
+    if (v < 0 || moved[static_cast<std::size_t>(v)] || !(d2 <= max_move * max_move)) continue;
+    const std::size_t vi = static_cast<std::size_t>(v);
+    const Eigen::Vector3d old = prior.vertices[vi];
+    std::vector<Eigen::Vector3d> before;
+    for (int k = start[vi]; k < start[vi + 1]; ++k) before.push_back(normal(faces_of[static_cast<std::size_t>(k)]));
+    prior.vertices[vi] = foot;
+    bool ok = true;
+    for (int k = start[vi]; k < start[vi + 1] && ok; ++k) {
+      const Eigen::Vector3d& b = before[static_cast<std::size_t>(k - start[vi])];
+      const Eigen::Vector3d a = normal(faces_of[static_cast<std::size_t>(k)]);
+      ok = a.dot(b) > cos_max_turn * a.norm() * b.norm();
+    }
+    if (!ok) {
+      prior.vertices[vi] = old;
+      continue;
+    }
+    moved[vi] = 1;
+    ++count;
+  }
+  prior.ComputeNormals();
+  return count;
 }
 
 FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& tree, const std::vector<Pose>& x_M_cT,

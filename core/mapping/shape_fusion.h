@@ -31,6 +31,8 @@
 #include <vector>
 
 #include "base/progress.h"
+#include "geometry/mesh_index.h"
+#include "geometry/point_index.h"
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
 #include "mapping/point_cone_tree.h"
@@ -90,6 +92,22 @@ FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& prior_tr
 FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<Pose>& x_M_cT,
                                   const std::vector<KeyframeShapes>& shapes, double fusion_radius,
                                   const FusionRule& rule = FusionRule{});
+
+// Before the fusion along normals: a narrow peak reaches the model only
+// where a vertex lies under its top feature (between vertices each view's
+// triangulation interpolates it to a different, lower height). So the prior
+// vertex nearest the foot on the CAD of each feature that is a shape vertex
+// in at least `support` keyframes (the support rule's views) and stands more
+// than min_height above the CAD moves onto that foot: highest feature
+// first, each vertex once, only when the foot lies within max_move of it
+// and none of its faces turns by more than 45 degrees. The vertex stays on
+// the CAD (where it is not fused, its deviation stays 0), and every view's
+// normal line through it meets the feature itself. prior_index indexes
+// prior.vertices as given; normals are recomputed. Deterministic. Returns
+// the number of vertices moved.
+int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
+                           const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
+                           double max_move);
 
 // A vertex's hits (in the order the loops meet them) combined by `rule`;
 // prior/normal: the prior vertex and its outward normal. Sets *support.

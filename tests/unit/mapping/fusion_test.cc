@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "geometry/mesh_index.h"
+#include "geometry/point_index.h"
 #include "mapping/mapper.h"
 #include "mapping/mesh_refinement.h"
 #include "mapping/refinement_region.h"
@@ -136,6 +137,57 @@ TEST(Fusion, FastEqualsThePapersLoopsBitForBit) {
       EXPECT_GT(on_top, 100);
     }
   }
+}
+
+TEST(Fusion, VerticesMovedUnderFeaturesStayOnTheCad) {
+  const Scene s = MakeScene(0.0);
+  MappingOptions o;
+  NullProgress p;
+  const std::vector<KeyframeShapes> shapes = DetectAllShapes(s.input, o, p);
+  const std::vector<Pose> cams = CameraPoses(s.input);
+  const MeshIndex index(s.cad);
+  const RefinedMesh refined = RefineMesh(s.cad, index, DepartureRegion(shapes, cams, index, o, p), o.refine_edge);
+  TriangleMesh snapped = refined.mesh;
+  const PointIndex prior_index(snapped.vertices);
+  const int moved = SnapVerticesToFeatures(snapped, prior_index, index, shapes, Pose(), o.fusion_support,
+                                           o.refine_threshold, 0.6 * o.refine_edge);
+  // The disk's features (0.1 m high, in several keyframes' shapes) each move
+  // one vertex; the flat hull's (below refine_threshold) none.
+  EXPECT_GT(moved, 50);
+  int changed = 0;
+  for (std::size_t v = 0; v < snapped.num_vertices(); ++v) {
+    if (snapped.vertices[v] == refined.mesh.vertices[v]) continue;
+    ++changed;
+    EXPECT_NEAR(snapped.vertices[v].z(), 0.0, 1e-12);  // on the CAD
+    EXPECT_LE((snapped.vertices[v] - refined.mesh.vertices[v]).norm(), 0.6 * o.refine_edge + 1e-12);
+    // Under a feature of the disk's top: some landmark's foot is the vertex.
+    double nearest = 1e9;
+    for (const auto& l : s.input.landmarks) {
+      if (l.p_g.z() < -o.refine_threshold)
+        nearest = std::min(nearest, (l.p_g.head<2>() - snapped.vertices[v].head<2>()).norm());
+    }
+    EXPECT_LT(nearest, 1e-9);
+  }
+  EXPECT_EQ(changed, moved);
+  // No face flipped (the CAD faces -z).
+  snapped.ComputeNormals();
+  for (const auto& n : snapped.face_normals) EXPECT_LT(n.z(), -0.99);
+  // The fusion along the normals on it: fast equals brute force, and the
+  // disk's top is kept.
+  FusionRule rule;
+  rule.along_normal = true;
+  const PointConeTree tree(snapped.vertices);
+  const FusionResult brute = FuseShapesBruteForce(snapped, cams, shapes, o.fusion_radius, rule);
+  const FusionResult fast = FuseShapes(snapped, tree, cams, shapes, o.fusion_radius, rule, p);
+  EXPECT_EQ(fast.vertices, brute.vertices);
+  EXPECT_EQ(fast.support, brute.support);
+  int on_top = 0;
+  for (std::size_t v = 0; v < snapped.num_vertices(); ++v) {
+    if (fast.support[v] == 0 || (snapped.vertices[v].head<2>() - kDisk).norm() > kRadius - 0.06) continue;
+    EXPECT_NEAR(-fast.vertices[v].z(), kHeight, 1e-9);
+    ++on_top;
+  }
+  EXPECT_GT(on_top, 100);
 }
 
 TEST(Refinement, OnlyWhereShapesDepartAndOnTheCad) {

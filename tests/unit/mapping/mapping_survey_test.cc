@@ -399,25 +399,32 @@ void FastFusionEqualsThePapersLoops(const std::string& preset) {
   Case& c = GetCase(preset);
   Mapper& mapper = *c.mappers.at(Params::kDense);
   NullProgress p;
-  const MappingResult last = mapper.Run(Options(Params::kDense, 0.0), p);  // fused into prior_mesh()
-  ASSERT_NE(mapper.prior_mesh(), nullptr);
-  const TriangleMesh& prior = *mapper.prior_mesh();
-  std::vector<Pose> x_M_cT;
-  for (const auto& k : mapper.input().keyframes) x_M_cT.push_back(mapper.input().x_gM.Inverse() * k.x_g_cT);
-  const FusionRule rule{last.options.fusion_keep_peaks, last.options.fusion_support, last.options.fusion_peak_band,
-                        last.options.fusion_along_normal};
-  const FusionResult brute = FuseShapesBruteForce(prior, x_M_cT, last.keyframes, last.options.fusion_radius, rule);
-  const FusionResult fast =
-      FuseShapes(prior, PointConeTree(prior.vertices), x_M_cT, last.keyframes, last.options.fusion_radius, rule, p);
-  ASSERT_EQ(fast.vertices.size(), brute.vertices.size());
-  EXPECT_EQ(fast.hits, brute.hits);
-  EXPECT_GT(fast.hits, 1000u);
-  std::size_t differ = 0;
-  for (std::size_t v = 0; v < fast.vertices.size(); ++v) {
-    differ += fast.count[v] != brute.count[v] || fast.vertices[v] != brute.vertices[v];
+  // Along the camera's rays (the default) and along the vertex normals
+  // (whose prior is the refined mesh with vertices moved under features).
+  for (const bool along_normal : {false, true}) {
+    SCOPED_TRACE(along_normal ? "along the normals" : "along the camera's rays");
+    MappingOptions options = Options(Params::kDense, 0.0);
+    options.fusion_along_normal = along_normal;
+    const MappingResult last = mapper.Run(options, p);  // fused into prior_mesh()
+    ASSERT_NE(mapper.prior_mesh(), nullptr);
+    const TriangleMesh& prior = *mapper.prior_mesh();
+    std::vector<Pose> x_M_cT;
+    for (const auto& k : mapper.input().keyframes) x_M_cT.push_back(mapper.input().x_gM.Inverse() * k.x_g_cT);
+    const FusionRule rule{last.options.fusion_keep_peaks, last.options.fusion_support, last.options.fusion_peak_band,
+                          last.options.fusion_along_normal};
+    const FusionResult brute = FuseShapesBruteForce(prior, x_M_cT, last.keyframes, last.options.fusion_radius, rule);
+    const FusionResult fast =
+        FuseShapes(prior, PointConeTree(prior.vertices), x_M_cT, last.keyframes, last.options.fusion_radius, rule, p);
+    ASSERT_EQ(fast.vertices.size(), brute.vertices.size());
+    EXPECT_EQ(fast.hits, brute.hits);
+    EXPECT_GT(fast.hits, 1000u);
+    std::size_t differ = 0;
+    for (std::size_t v = 0; v < fast.vertices.size(); ++v) {
+      differ += fast.count[v] != brute.count[v] || fast.vertices[v] != brute.vertices[v];
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_EQ(last.model.vertices, fast.vertices);  // the run's model is that fusion
   }
-  EXPECT_EQ(differ, 0u);
-  EXPECT_EQ(last.model.vertices, fast.vertices);  // the run's model is that fusion
 }
 
 void WritesTheResultsFolder(const std::string& preset) {
