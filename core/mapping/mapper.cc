@@ -166,7 +166,7 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
     auto next = std::make_unique<Snapped>();
     next->mesh = refined->refined.mesh;
     next->moved = SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, input.x_gM.Inverse(),
-                                         o.fusion_support, o.refine_threshold, 0.6 * o.refine_edge);
+                                         o.fusion_support, o.object_min_height, 0.6 * o.refine_edge);
     next->tree = std::make_unique<PointConeTree>(next->mesh.vertices);
     next->index = std::make_unique<PointIndex>(next->mesh.vertices);
     snapped = std::move(next);

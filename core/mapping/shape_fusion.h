@@ -14,7 +14,8 @@
 // and a vertex whose normal faces away from the camera (the far side of the
 // hull, which the camera cannot see) is not fused.
 //
-// With FusionRule::along_normal the line cast is not the camera's ray but the line through the prior vertex along its
+// By default (FusionRule::along_normal) the line cast is not the camera's
+// ray but the line through the prior vertex along its
 // outward normal (the segment within NormalReach of the vertex, shape_raycast.h): a camera ray puts a narrow peak over
 // a different vertex for each view (parallax), the normal puts it over the same vertex for every view, so the views'
 // hits at the peak support each other.
@@ -55,10 +56,10 @@ namespace hull {
 // through it, as in the paper, or its normal); it is part of the rule because
 // it decides which hits a vertex gathers.
 struct FusionRule {
-  bool keep_peaks = true;     // false: eq. 15, the mean of every hit
-  int support = 2;            // hits that must reach a height (keep_peaks)
-  double band = 0.005;        // m, hits averaged below h_k (keep_peaks)
-  bool along_normal = false;  // true: the vertex's normal; false: the camera's ray through it (the paper's)
+  bool keep_peaks = true;    // false: eq. 15, the mean of every hit
+  int support = 2;           // hits that must reach a height (keep_peaks)
+  double band = 0.005;       // m, hits averaged below h_k (keep_peaks)
+  bool along_normal = true;  // false: the camera's ray through the vertex (the paper's)
 };
 
 // Eq. 15: the running mean of a vertex's hits.

@@ -1,7 +1,7 @@
 // Object heights and survey change end to end (issue 12, parts 1 and 4;
 // docs/benchmarks.md, "Peaks per true object"):
 //   bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]
-//               [--fusion peaks|normal|mean]
+//               [--fusion normal|peaks|mean]
 // The preset is simulated and written as a bundle (as `hullinspect-cli
 // simulate` writes it), read back and run through the whole pipeline with
 // its default options (as `hullinspect-cli run`: alignment, max-mixture
@@ -268,7 +268,7 @@ int main(int argc, char** argv) {
   int threads = 0;
   bool pair = false, reuse = false;
   std::string explain;
-  std::string preset = "demo", keep, fusion = "peaks";
+  std::string preset = "demo", keep, fusion = "normal";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       threads = std::atoi(argv[++i]);
@@ -290,7 +290,7 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT] "
-          "[--fusion peaks|normal|mean]\n");
+          "[--fusion normal|peaks|mean]\n");
       return 2;
     }
   }

@@ -324,10 +324,14 @@ void ModelStaysOnTheCadAwayFromObjects(const std::string& preset) {
     EXPECT_GT(away, 1000u);
     // Within 1 cm except where the features it passes through lie further
     // off themselves (2-6 % of the adjusted hull features do, up to 2.5 cm):
-    // no larger a share beyond 1 cm than the features', and no worse.
+    // no larger a share beyond 1 cm than the features', and no worse than
+    // the worst of them by more than a millimetre (a shape's flat triangle
+    // between features below a convex hull lies deeper than they do, by its
+    // sagitta; along the normals the demo's worst fused vertex is 0.8 mm
+    // beyond its worst feature).
     EXPECT_LE(static_cast<double>(beyond) / static_cast<double>(fused.size()), hull_beyond_share + 0.005);
     EXPECT_LE(p99, hull[hull.size() * 99 / 100] + 0.001);
-    EXPECT_LE(worst, hull.back());
+    EXPECT_LE(worst, hull.back() + 0.001);
     // With the dense parameters the hull's own features form shapes (at
     // tau = 0 they cover much of what was seen), so this is no empty claim.
     if (params == Params::kDense) {
@@ -399,8 +403,9 @@ void FastFusionEqualsThePapersLoops(const std::string& preset) {
   Case& c = GetCase(preset);
   Mapper& mapper = *c.mappers.at(Params::kDense);
   NullProgress p;
-  // Along the camera's rays (the default) and along the vertex normals
-  // (whose prior is the refined mesh with vertices moved under features).
+  // Along the camera's rays (the paper's) and along the vertex normals (the
+  // default; its prior is the refined mesh with vertices moved under
+  // features).
   for (const bool along_normal : {false, true}) {
     SCOPED_TRACE(along_normal ? "along the normals" : "along the camera's rays");
     MappingOptions options = Options(Params::kDense, 0.0);
