@@ -1,6 +1,7 @@
 // Object heights and survey change end to end (issue 12, parts 1 and 4;
 // docs/benchmarks.md, "Peaks per true object"):
 //   bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]
+//               [--fusion normal|peaks|mean]
 // The preset is simulated and written as a bundle (as `hullinspect-cli
 // simulate` writes it), read back and run through the whole pipeline with
 // its default options (as `hullinspect-cli run`: alignment, max-mixture
@@ -12,6 +13,7 @@
 // every new, removed and >= 3 cm grown object reported, none false, the
 // growth error. --keep DIR keeps the bundles and adjustments there; --reuse
 // then maps the kept adjustments again (a change to the mapping in seconds).
+// --fusion chooses the fusion as `hullinspect-cli map --fusion` does.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -112,7 +114,7 @@ void Explain(const std::vector<hull::ObjectHeightCheck>& checks, const std::stri
 // `reuse` and both there, the adjustment is read back and only the mapping
 // runs (as `hullinspect-cli map` would on it).
 Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, const fs::path& dir, int threads,
-              bool reuse, const std::string& explain) {
+              bool reuse, const std::string& explain, const std::string& fusion) {
   hull::NullProgress p;
   Survey s;
   s.sim = hull::SimulateSurvey(so, p);
@@ -123,6 +125,8 @@ Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, 
   hull::PipelineOptions o;
   o.adjustment.num_threads = threads;
   o.mapping.num_threads = threads;
+  o.mapping.fusion_keep_peaks = fusion != "mean";
+  o.mapping.fusion_along_normal = fusion == "normal";
   const auto t = Clock::now();
   if (reuse) {
     s.adjustment = hull::ReadAdjustmentResult(adjustment);
@@ -264,7 +268,7 @@ int main(int argc, char** argv) {
   int threads = 0;
   bool pair = false, reuse = false;
   std::string explain;
-  std::string preset = "demo", keep;
+  std::string preset = "demo", keep, fusion = "normal";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       threads = std::atoi(argv[++i]);
@@ -274,6 +278,10 @@ int main(int argc, char** argv) {
       keep = argv[++i];
     } else if (!std::strcmp(argv[i], "--explain") && i + 1 < argc) {
       explain = argv[++i];
+    } else if (!std::strcmp(argv[i], "--fusion") && i + 1 < argc &&
+               (!std::strcmp(argv[i + 1], "normal") || !std::strcmp(argv[i + 1], "peaks") ||
+                !std::strcmp(argv[i + 1], "mean"))) {
+      fusion = argv[++i];
     } else if (!std::strcmp(argv[i], "--reuse")) {
       reuse = true;
     } else if (!std::strcmp(argv[i], "--pair")) {
@@ -281,7 +289,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(
           stderr,
-          "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]\n");
+          "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT] "
+          "[--fusion normal|peaks|mean]\n");
       return 2;
     }
   }
@@ -289,13 +298,14 @@ int main(int argc, char** argv) {
       keep.empty() ? fs::temp_directory_path() / ("bench_peaks-" + std::to_string(::getpid())) : fs::path(keep);
   fs::create_directories(dir);
   const hull::SurveySimulationOptions oa = hull::SurveyPreset(preset);
-  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain);
+  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, fusion);
   if (pair) {
     hull::SurveySimulationOptions ob = oa;
     ob.changes.grow = 2;
     ob.changes.remove = 1;
     ob.changes.add = 2;
-    const Survey b = RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain);
+    const Survey b =
+        RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain, fusion);
     ComparePair(a, b);
   }
   if (keep.empty()) fs::remove_all(dir);
