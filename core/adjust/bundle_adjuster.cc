@@ -315,7 +315,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   const Pose x_s_cT0 = BlockToPose(s.extrinsic.data());
   const Pose x_gM0 = x_gM_start;
   std::vector<std::vector<int>> lm_obs;  // observations used, per kept landmark
-  int skipped = 0, behind = 0;
+  int skipped = 0, behind = 0, off_model = 0;
   for (std::int64_t id : ids) {
     const std::vector<int>& list = obs_of[id];
     std::set<std::int64_t> views;
@@ -360,6 +360,12 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
         continue;
       }
       p = t->point;
+      if (o.max_initial_deviation > 0 &&
+          !(std::abs(index.OrthogonalSignedDistance(x_gM0, p, o.lookup).signed_distance) <= o.max_initial_deviation)) {
+        ++skipped;
+        ++off_model;
+        continue;
+      }
     }
     // Observations whose camera sees the initial point from behind cannot be
     // evaluated (Ceres needs every residual at the start): leave them out.
@@ -521,6 +527,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   AdjustmentResult result;
   result.options = o;
   result.num_landmarks_skipped = skipped;
+  result.num_landmarks_off_model = off_model;
   result.observations_rejected = behind;
   auto dvl_residuals = [&](bool initial) {
     std::size_t n = 0;
