@@ -200,6 +200,22 @@ int main(int argc, char** argv) {
     std::printf("  %lld: %.3f m, %.1f deg, %.3f m, %.3f m, %.3f m, %.3f m, %.0f\n",
                 static_cast<long long>(worst[i].second), worst[i].first, d[0], d[1], d[2], d[3], d[4], d[5]);
   }
+  // Landmarks standing higher than their truth (what raises an object's max).
+  std::map<int, Bin> high_by_views;
+  std::printf(
+      "landmarks more than 0.1 m above their true deviation (id, object, error, true angle, initial h, "
+      "adjusted h, true h, observations):\n");
+  int shown = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const LandmarkEstimate& l = *used[static_cast<std::size_t>(i)];
+    const auto& d = detail[l.id];
+    if (!(d[3] - d[4] > 0.1) || std::abs(d[2]) > 0.5) continue;
+    high_by_views[static_cast<int>(d[5])].Add((F.col(i) - T.col(i)).norm());
+    if (shown++ < 30)
+      std::printf("  %lld %s: %.3f m, %.1f deg, %.3f, %.3f, %.3f, %.0f\n", static_cast<long long>(l.id),
+                  truth[l.id]->object.c_str(), (F.col(i) - T.col(i)).norm(), d[0], d[2], d[3], d[4], d[5]);
+  }
+  PrintBins("  of them, by observations:", high_by_views, "obs");
   // Large adjusted deviations: how many, and their initial deviations.
   std::map<int, Bin> by_h;
   std::size_t far_init = 0, far_init_bad = 0;

@@ -8,10 +8,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <set>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
+#include "adjust/adjust_result.h"
 #include "adjust/bundle_adjuster.h"
 #include "base/progress.h"
 #include "simulate/survey_simulator.h"
@@ -117,6 +120,12 @@ TEST(InitialLandmarks, TracksTriangulatedFarOffTheMeshAreLeftOut) {
   EXPECT_EQ(unlimited.num_landmarks_off_model, 0);
   EXPECT_GT(planted_kept(unlimited), 0);
   EXPECT_GT(moved(unlimited), 1e-3);
+  // adjustment.json keeps the count and the limit.
+  const std::string dir = (std::filesystem::path(::testing::TempDir()) / "hi_initial_landmarks").string();
+  WriteAdjustmentResult(limited, dir);
+  const AdjustmentResult back = ReadAdjustmentResult(dir);
+  EXPECT_EQ(back.num_landmarks_off_model, limited.num_landmarks_off_model);
+  EXPECT_EQ(back.options.max_initial_deviation, o.max_initial_deviation);
 }
 
 TEST(InitialLandmarks, MaxInitialDeviationMustBeFiniteAndNotNegative) {
