@@ -35,8 +35,10 @@ options:
   --min-views N        ... held by the shapes of N keyframes (default 2)
   --refine-edge M      edge length of the refined model (default 0.03)
   --fusion-radius M    fuse vertices within M of the camera (default 5)
-  --fusion RULE        peaks: a vertex rises to the height --support hits
-                       reach (default); mean: the paper's eq. 15
+  --fusion RULE        normal: a vertex rises to the height --support hits
+                       along its normal reach (default); peaks: the same
+                       along the camera's rays; mean: the paper's eq. 15
+                       (the mean of the camera rays' hits)
   --support N          hits that must reach a height (default 2)
   --peak-band M        hits averaged within M below it (default 0.005)
   --stations N         stations along the hull (default 20)
@@ -74,9 +76,12 @@ int RunMap(const CommandArgs& argv) {
   o.object_min_views = static_cast<int>(a.GetInt("min-views", o.object_min_views));
   o.refine_edge = a.GetDouble("refine-edge", o.refine_edge);
   o.fusion_radius = a.GetDouble("fusion-radius", o.fusion_radius);
-  const std::string rule = a.Get("fusion", "peaks");
-  if (rule != "peaks" && rule != "mean") throw UsageError("--fusion: expected 'peaks' or 'mean', got '" + rule + "'");
-  o.fusion_keep_peaks = rule == "peaks";
+  const std::string rule = a.Get("fusion", "normal");
+  if (rule != "normal" && rule != "peaks" && rule != "mean") {
+    throw UsageError("--fusion: expected 'normal', 'peaks' or 'mean', got '" + rule + "'");
+  }
+  o.fusion_keep_peaks = rule != "mean";
+  o.fusion_along_normal = rule == "normal";
   o.fusion_support = static_cast<int>(a.GetInt("support", o.fusion_support));
   o.fusion_peak_band = a.GetDouble("peak-band", o.fusion_peak_band);
   o.stations = static_cast<int>(a.GetInt("stations", o.stations));

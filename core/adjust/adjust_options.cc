@@ -44,6 +44,9 @@ void AdjustmentOptions::Check() const {
   if (!(outlier_sigmas > 0)) throw OptionError("outlier_sigmas", "must be positive");
   if (rejection_rounds < 0) throw OptionError("rejection_rounds", "must be >= 0");
   if (min_observations < 1) throw OptionError("min_observations", "must be at least 1");
+  if (!(max_initial_deviation >= 0) || !std::isfinite(max_initial_deviation)) {
+    throw OptionError("max_initial_deviation", "must be >= 0 (0: no limit)");
+  }
   if (!(max_solver_seconds >= 0)) throw OptionError("max_solver_seconds", "must be >= 0 (0: no limit)");
   watch.Check();
   if (max_iterations < 1) throw OptionError("max_iterations", "must be at least 1");

@@ -44,6 +44,16 @@ struct AdjustmentOptions {
   // Landmarks seen in fewer keyframes are left out (a single stereo view can
   // still be triangulated, but is weak).
   int min_observations = 2;
+  // A landmark triangulated from the initial poses farther than this (m)
+  // from the prior mesh (placed by the initial model pose, which the DVL
+  // returns fix along the hull's normal to centimetres) is left out: no
+  // foreign structure on a hull stands that far off, and such a point is a
+  // wrong match the rays cannot reveal (a monocular track of two views
+  // matched along the epipolar line triangulates exactly, metres off). Left
+  // in, the off-model component (sigma0) pulls the model pose toward it,
+  // and a flat bottom leaves the pose free to slide and turn. 0: no limit.
+  // Given (landmarks.csv) and warm-started positions are not judged.
+  double max_initial_deviation = 0.5;
   // Outlier rejection (wrong matches): after the solve, observations whose
   // reprojection error exceeds this many pixel sigmas (norm of the 2-D
   // error in either camera) are removed, landmarks left with fewer than

@@ -61,6 +61,7 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   opt.Set("estimate_model_pose", r.options.estimate_model_pose);
   opt.Set("use_dvl", r.options.use_dvl);
   opt.Set("max_iterations", r.options.max_iterations);
+  opt.Set("max_initial_deviation", r.options.max_initial_deviation);
   root.Set("options", opt);
   Json sum = Json::Object();
   sum.Set("termination", r.termination);
@@ -71,6 +72,7 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   sum.Set("residual_blocks", r.num_residual_blocks);
   sum.Set("landmarks", static_cast<std::int64_t>(r.landmarks.size()));
   sum.Set("landmarks_skipped", r.num_landmarks_skipped);
+  sum.Set("landmarks_off_model", r.num_landmarks_off_model);
   sum.Set("observations_rejected", r.observations_rejected);
   sum.Set("fraction_on_surface", r.FractionOnSurface());
   sum.Set("decision_boundary", r.options.DecisionBoundary());
@@ -157,6 +159,7 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
       opt.String("lookup") == "nearest-vertex" ? SurfaceLookup::kNearestVertex : SurfaceLookup::kClosestFace;
   r.options.huber_sigmas = opt.Number("huber_sigmas");
   r.options.max_iterations = static_cast<int>(opt.Integer("max_iterations"));
+  r.options.max_initial_deviation = opt.NumberOr("max_initial_deviation", 0);  // older results: no limit
   const JsonReader sum = root.Object("summary");
   r.termination = sum.String("termination");
   r.converged = sum.Required("converged").as_bool();
@@ -167,6 +170,7 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
   r.final_cost = sum.Number("final_cost");
   r.num_residual_blocks = static_cast<int>(sum.Integer("residual_blocks"));
   r.num_landmarks_skipped = static_cast<int>(sum.Integer("landmarks_skipped"));
+  r.num_landmarks_off_model = static_cast<int>(sum.NumberOr("landmarks_off_model", 0));  // older results: none
   if (auto m = sum.OptionalString("covariance")) {
     try {
       r.covariance_method = ParseCovarianceMethod(*m);

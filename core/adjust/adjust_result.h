@@ -70,6 +70,8 @@ struct AdjustmentResult {
   double initial_cost = 0, final_cost = 0;
   int num_residual_blocks = 0;
   int num_landmarks_skipped = 0;  // too few observations, not triangulable, or lost to outlier rejection
+  // Of those skipped: triangulated farther than options.max_initial_deviation from the prior mesh.
+  int num_landmarks_off_model = 0;
   int observations_rejected = 0;  // reprojection outliers removed (wrong matches)
   // How the landmark covariances were computed (a fallback says why) and how long it took.
   CovarianceMethod covariance_method = CovarianceMethod::kNone;

@@ -100,6 +100,27 @@ double FractionOnSurface(const State& s, const MeshIndex& index, const Adjustmen
   return static_cast<double>(on) / static_cast<double>(s.landmark.size());
 }
 
+// Whether a landmark triangulated from the initial poses lies within
+// o.max_initial_deviation of the prior mesh placed by x_gM: its signed
+// distance, and along each of its rays, its depth against the depth where
+// the ray meets the mesh. The second catches a point metres from where its
+// rays see the hull yet near another part of the mesh (a wrong match
+// triangulated far along or into the hull: its closest face is elsewhere).
+bool NearTheMesh(const MeshIndex& index, const Pose& x_gM, const Eigen::Vector3d& p, const std::vector<ViewRay>& rays,
+                 const std::vector<int>& inliers, const AdjustmentOptions& o) {
+  const double limit = o.max_initial_deviation;
+  if (!(std::abs(index.OrthogonalSignedDistance(x_gM, p, o.lookup).signed_distance) <= limit)) return false;
+  const Pose Mg = x_gM.Inverse();
+  for (int i : inliers) {
+    const ViewRay& r = rays[static_cast<std::size_t>(i)];
+    const double depth = (p - r.origin).dot(r.dir);
+    const RayHit hit = index.Raycast(Mg * r.origin, Mg.Rotate(r.dir), 30.0);
+    // A ray that meets no mesh (past its edge) is judged by the distance above.
+    if (hit.hit && !(std::abs(hit.range - depth) <= limit)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 // The solve's share of its progress range after `iterations` iterations
@@ -315,7 +336,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   const Pose x_s_cT0 = BlockToPose(s.extrinsic.data());
   const Pose x_gM0 = x_gM_start;
   std::vector<std::vector<int>> lm_obs;  // observations used, per kept landmark
-  int skipped = 0, behind = 0;
+  int skipped = 0, behind = 0, off_model = 0;
   for (std::int64_t id : ids) {
     const std::vector<int>& list = obs_of[id];
     std::set<std::int64_t> views;
@@ -360,6 +381,11 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
         continue;
       }
       p = t->point;
+      if (o.max_initial_deviation > 0 && !t->from_mesh && !NearTheMesh(index, x_gM0, p, rays, t->inliers, o)) {
+        ++skipped;
+        ++off_model;
+        continue;
+      }
     }
     // Observations whose camera sees the initial point from behind cannot be
     // evaluated (Ceres needs every residual at the start): leave them out.
@@ -521,6 +547,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   AdjustmentResult result;
   result.options = o;
   result.num_landmarks_skipped = skipped;
+  result.num_landmarks_off_model = off_model;
   result.observations_rejected = behind;
   auto dvl_residuals = [&](bool initial) {
     std::size_t n = 0;

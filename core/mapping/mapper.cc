@@ -49,6 +49,15 @@ struct Refined {
   std::unique_ptr<PointIndex> index;
 };
 
+// The refined mesh with vertices moved under features (the fusion along
+// normals, SnapVerticesToFeatures) and the structures built over it.
+struct Snapped {
+  TriangleMesh mesh;
+  int moved = 0;
+  std::unique_ptr<PointConeTree> tree;
+  std::unique_ptr<PointIndex> index;
+};
+
 }  // namespace
 
 struct Mapper::Impl {
@@ -65,6 +74,7 @@ struct Mapper::Impl {
   std::optional<ShapeKey> shape_key;
   std::vector<KeyframeShapes> shapes;
   std::unique_ptr<Refined> refined;
+  std::unique_ptr<Snapped> snapped;  // the last run's, when it fused along normals
   std::optional<InspectionKey> inspection_key;
   HullFrame hull;
   InspectionCoverage inspection;
@@ -94,7 +104,10 @@ Mapper::~Mapper() = default;
 const MappingInput& Mapper::input() const { return impl_->input; }
 const TriangleMesh& Mapper::cad() const { return impl_->cad; }
 int Mapper::refinements() const { return impl_->refinements; }
-const TriangleMesh* Mapper::prior_mesh() const { return impl_->refined ? &impl_->refined->refined.mesh : nullptr; }
+const TriangleMesh* Mapper::prior_mesh() const {
+  if (impl_->snapped) return &impl_->snapped->mesh;
+  return impl_->refined ? &impl_->refined->refined.mesh : nullptr;
+}
 
 MappingResult Mapper::Run(const MappingOptions& options, Progress& progress) {
   options.Check();
@@ -146,16 +159,28 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
     progress.ThrowIfCancelled();
   }
   s.seconds.refinement = Since(t);
-  const TriangleMesh& prior = refined->refined.mesh;
   s.region_cells = refined->refined.region.num_cells();
   s.refined_area = refined->refined.refined_area;
+  snapped.reset();
+  if (o.fusion_along_normal && o.fusion_keep_peaks) {
+    auto next = std::make_unique<Snapped>();
+    next->mesh = refined->refined.mesh;
+    next->moved = SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, input.x_gM.Inverse(),
+                                         o.fusion_support, o.object_min_height, 0.6 * o.refine_edge);
+    next->tree = std::make_unique<PointConeTree>(next->mesh.vertices);
+    next->index = std::make_unique<PointIndex>(next->mesh.vertices);
+    snapped = std::move(next);
+  }
+  const TriangleMesh& prior = snapped ? snapped->mesh : refined->refined.mesh;
+  const PointConeTree& prior_tree = snapped ? *snapped->tree : *refined->tree;
+  const PointIndex& prior_index = snapped ? *snapped->index : *refined->index;
 
   // Algorithm 2.
   t = Clock::now();
   progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
   SubProgress fusion_progress(progress, 0.5, 0.8);
-  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band};
-  const FusionResult fused = FuseShapes(prior, *refined->tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
+  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band, o.fusion_along_normal};
+  const FusionResult fused = FuseShapes(prior, prior_tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
   s.seconds.fusion = Since(t);
 
   // Every vertex's signed distance to the CAD surface (fused or not: a
@@ -206,7 +231,7 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   // Objects and the assessment.
   t = Clock::now();
   progress.Update(0.95, "detecting objects and rating the zones");
-  ObjectDetection objects = DetectObjects(prior, deviation, *refined->index, *cad_index, hull, input, shapes, o);
+  ObjectDetection objects = DetectObjects(prior, deviation, prior_index, *cad_index, hull, input, shapes, o);
   r.zones = AssessFouling(hull, inspection, objects);
   r.objects = std::move(objects.objects);
   s.seconds.objects = Since(t);

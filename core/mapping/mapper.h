@@ -40,7 +40,9 @@ class Mapper {
   // How many times the mesh has been refined (for tests and benchmarks).
   int refinements() const;
   // The mesh the latest run fused into (the CAD refined where shapes departed,
-  // in M), or nullptr before the first run. Valid until the next Run.
+  // in M; fusing along normals, with vertices moved under supported features:
+  // SnapVerticesToFeatures), or nullptr before the first run. Valid until the
+  // next Run.
   const TriangleMesh* prior_mesh() const;
 
  private:

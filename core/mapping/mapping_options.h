@@ -36,6 +36,13 @@ struct MappingOptions {
   int fusion_support = 2;
   // Hits within this band (m) below the supported height are averaged.
   double fusion_peak_band = 0.005;
+  // The line a vertex is fused along: true (the default) its outward
+  // normal, after moving the vertex nearest each supported feature under it
+  // (every view then meets a narrow peak over the same vertex, at the
+  // feature); false the camera's ray through it (the paper's; parallax
+  // spreads a narrow peak over several vertices). docs/mapping.md, "Keeping
+  // peaks".
+  bool fusion_along_normal = true;
   // Target edge length of the isotropic remeshing where shapes depart from
   // the CAD surface.
   double refine_edge = 0.03;

@@ -40,6 +40,7 @@ Json OptionsJson(const MappingOptions& o) {
   j.Set("fusion_keep_peaks", o.fusion_keep_peaks);
   j.Set("fusion_support", o.fusion_support);
   j.Set("fusion_peak_band", o.fusion_peak_band);
+  j.Set("fusion_along_normal", o.fusion_along_normal);
   j.Set("refine_edge", o.refine_edge);
   j.Set("refine_threshold", o.refine_threshold);
   j.Set("refine_margin", o.refine_margin);

@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <functional>
+#include <map>
 
 #include "geometry/point_index.h"
 #include "mapping/shape_raycast.h"
@@ -35,6 +37,35 @@ bool RayThroughVertex(const Pose& cam, const Pose& cam_inv, const Eigen::Vector3
   if (!h.hit) return false;
   *p = cam * (h.t * dir);
   return true;
+}
+
+// The same for the fusion along the vertex normal: the segment from the
+// vertex's normal line `reach` outside the vertex to `reach` inside it, in
+// the camera frame, is cast by `cast` (FirstShapeHitOnSegment or
+// ShapeFootprint::SegmentHit); the first hit from outside is the line's
+// outermost point on the shape (what the camera sees of it).
+template <typename Cast>
+bool NormalThroughVertex(const Pose& cam, const Pose& cam_inv, const Eigen::Vector3d& v, const Eigen::Vector3d& normal,
+                         double radius2, double reach, Cast&& cast, Eigen::Vector3d* p) {
+  const Eigen::Vector3d d = v - cam.translation();
+  if (!(d.squaredNorm() <= radius2)) return false;
+  if (!(normal.dot(d) < 0)) return false;  // faces away from the camera
+  const Eigen::Vector3d n_c = cam_inv.Rotate(normal);
+  const Eigen::Vector3d outer = cam_inv * v + reach * n_c;
+  const Eigen::Vector3d dir = -n_c;
+  const ShapeHit h = cast(outer, dir, 2 * reach);
+  if (!h.hit) return false;
+  *p = cam * (outer + h.t * dir);
+  return true;
+}
+
+// Bounding sphere (in the camera frame) of a shape's vertices.
+void ShapeSphere(const DetectedShape& s, Eigen::Vector3d* centre, double* radius) {
+  Eigen::AlignedBox3d box;
+  for (const auto& v : s.vertices_c) box.extend(v);
+  *centre = box.center();
+  *radius = 0;
+  for (const auto& v : s.vertices_c) *radius = std::max(*radius, (v - *centre).norm());
 }
 
 FusionResult Finish(const TriangleMesh& prior, const std::vector<std::vector<Eigen::Vector3d>>& hits,
@@ -80,6 +111,84 @@ Eigen::Vector3d CombineHits(const std::vector<Eigen::Vector3d>& hits, const Eige
   return a.value;
 }
 
+int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
+                           const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
+                           double max_move) {
+  // Per landmark: the keyframes whose shapes hold it, its deviation and
+  // position (in g).
+  struct Feature {
+    int keyframes = 0;
+    double deviation = 0;
+    Eigen::Vector3d p_g = Eigen::Vector3d::Zero();
+  };
+  std::map<int, Feature> features;
+  for (const KeyframeShapes& ks : shapes) {
+    for (const DetectedShape& sh : ks.shapes) {
+      for (std::size_t j = 0; j < sh.points.size(); ++j) {
+        if (!(sh.deviation[j] > min_height)) continue;
+        Feature& f = features[ks.points[static_cast<std::size_t>(sh.points[j])].landmark];
+        ++f.keyframes;
+        f.deviation = sh.deviation[j];
+        f.p_g = sh.vertices_g[j];
+      }
+    }
+  }
+  std::vector<std::pair<double, int>> order;  // (-deviation, landmark): highest first
+  for (const auto& [l, f] : features) {
+    if (f.keyframes >= support) order.push_back({-f.deviation, l});
+  }
+  std::sort(order.begin(), order.end());
+  // Faces per vertex (CSR).
+  const std::size_t nv = prior.num_vertices();
+  std::vector<int> start(nv + 1, 0), faces_of;
+  for (const Face& f : prior.faces) {
+    for (const int v : f) ++start[static_cast<std::size_t>(v) + 1];
+  }
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  faces_of.assign(static_cast<std::size_t>(start[nv]), 0);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (std::size_t f = 0; f < prior.num_faces(); ++f) {
+      for (const int v : prior.faces[f])
+        faces_of[static_cast<std::size_t>(fill[static_cast<std::size_t>(v)]++)] = static_cast<int>(f);
+    }
+  }
+  auto normal = [&](int f) {
+    const Face& F = prior.faces[static_cast<std::size_t>(f)];
+    const Eigen::Vector3d& a = prior.vertices[static_cast<std::size_t>(F[0])];
+    return Eigen::Vector3d(
+        (prior.vertices[static_cast<std::size_t>(F[1])] - a).cross(prior.vertices[static_cast<std::size_t>(F[2])] - a));
+  };
+  const double cos_max_turn = std::cos(M_PI / 4);
+  std::vector<char> moved(nv, 0);
+  int count = 0;
+  for (const auto& [neg_deviation, l] : order) {
+    (void)neg_deviation;
+    const Eigen::Vector3d foot = cad.Closest(x_Mg * features.at(l).p_g).point;
+    const auto [v, d2] = prior_index.NearestOne(foot);  // squared distance
+    if (v < 0 || moved[static_cast<std::size_t>(v)] || !(d2 <= max_move * max_move)) continue;
+    const std::size_t vi = static_cast<std::size_t>(v);
+    const Eigen::Vector3d old = prior.vertices[vi];
+    std::vector<Eigen::Vector3d> before;
+    for (int k = start[vi]; k < start[vi + 1]; ++k) before.push_back(normal(faces_of[static_cast<std::size_t>(k)]));
+    prior.vertices[vi] = foot;
+    bool ok = true;
+    for (int k = start[vi]; k < start[vi + 1] && ok; ++k) {
+      const Eigen::Vector3d& b = before[static_cast<std::size_t>(k - start[vi])];
+      const Eigen::Vector3d a = normal(faces_of[static_cast<std::size_t>(k)]);
+      ok = a.dot(b) > cos_max_turn * a.norm() * b.norm();
+    }
+    if (!ok) {
+      prior.vertices[vi] = old;
+      continue;
+    }
+    moved[vi] = 1;
+    ++count;
+  }
+  prior.ComputeNormals();
+  return count;
+}
+
 FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& tree, const std::vector<Pose>& x_M_cT,
                         const std::vector<KeyframeShapes>& shapes, double radius, const FusionRule& rule,
                         Progress& progress) {
@@ -98,17 +207,41 @@ FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& tree, co
       const Pose inv = cam.Inverse();
       for (const DetectedShape& s : ks.shapes) {
         const ShapeFootprint fp(s);
-        const Eigen::Vector3d axis = cam.Rotate(fp.axis());
         const std::size_t first = out.size();
-        tree.Query(cam.translation(), radius, axis, fp.cos_half_angle(), fp.sin_half_angle(), fp.narrow(), [&](int i) {
-          Eigen::Vector3d p;
-          if (RayThroughVertex(
-                  cam, inv, prior.vertices[static_cast<std::size_t>(i)],
-                  prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
-                  [&](const Eigen::Vector3d& dir) { return fp.Hit(dir); }, &p)) {
-            out.push_back({i, p});
-          }
-        });
+        if (rule.along_normal) {
+          // A vertex whose normal segment meets the shape lies within the
+          // reach of a point of it.
+          const double reach = NormalReach(s);
+          Eigen::Vector3d centre;
+          double r = 0;
+          ShapeSphere(s, &centre, &r);
+          const double ball = (r + reach) * (1 + 1e-9) + 1e-9;
+          const Eigen::Vector3d none = Eigen::Vector3d::UnitZ();
+          tree.Query(cam * centre, ball, none, 0, 1, false, [&](int i) {
+            Eigen::Vector3d p;
+            if (NormalThroughVertex(
+                    cam, inv, prior.vertices[static_cast<std::size_t>(i)],
+                    prior.vertex_normals[static_cast<std::size_t>(i)], radius2, reach,
+                    [&](const Eigen::Vector3d& o, const Eigen::Vector3d& dir, double t_max) {
+                      return fp.SegmentHit(o, dir, t_max);
+                    },
+                    &p)) {
+              out.push_back({i, p});
+            }
+          });
+        } else {
+          const Eigen::Vector3d axis = cam.Rotate(fp.axis());
+          tree.Query(cam.translation(), radius, axis, fp.cos_half_angle(), fp.sin_half_angle(), fp.narrow(),
+                     [&](int i) {
+                       Eigen::Vector3d p;
+                       if (RayThroughVertex(
+                               cam, inv, prior.vertices[static_cast<std::size_t>(i)],
+                               prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
+                               [&](const Eigen::Vector3d& dir) { return fp.Hit(dir); }, &p)) {
+                         out.push_back({i, p});
+                       }
+                     });
+        }
         // Within a shape each vertex is hit once; sorting only fixes the order
         // in which equal work is done, not the result.
         std::sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
@@ -144,12 +277,20 @@ FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<P
     }
     std::sort(nearby.begin(), nearby.end());
     for (const DetectedShape& s : ks.shapes) {  // line 6
-      for (const int i : nearby) {              // line 7
+      const double reach = NormalReach(s);
+      for (const int i : nearby) {  // line 7
+        const Eigen::Vector3d& v = prior.vertices[static_cast<std::size_t>(i)];
+        const Eigen::Vector3d& n = prior.vertex_normals[static_cast<std::size_t>(i)];
         Eigen::Vector3d p;
-        if (RayThroughVertex(
-                cam, inv, prior.vertices[static_cast<std::size_t>(i)],
-                prior.vertex_normals[static_cast<std::size_t>(i)], radius2,
-                [&](const Eigen::Vector3d& dir) { return FirstShapeHit(s, dir); }, &p)) {
+        const bool hit = rule.along_normal ? NormalThroughVertex(
+                                                 cam, inv, v, n, radius2, reach,
+                                                 [&](const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                                                     double t_max) { return FirstShapeHitOnSegment(s, o, dir, t_max); },
+                                                 &p)
+                                           : RayThroughVertex(
+                                                 cam, inv, v, n, radius2,
+                                                 [&](const Eigen::Vector3d& dir) { return FirstShapeHit(s, dir); }, &p);
+        if (hit) {
           per_vertex[static_cast<std::size_t>(i)].push_back(p);  // line 11
           ++total;
         }

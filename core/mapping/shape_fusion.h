@@ -14,17 +14,26 @@
 // and a vertex whose normal faces away from the camera (the far side of the
 // hull, which the camera cannot see) is not fused.
 //
-// FuseShapes finds, per shape, only the vertices whose rays can reach it (a
-// cone around the shape over a tree of the vertices, then a 2-D grid over
-// the shape's footprint on the normalised image plane) and runs keyframes
-// in parallel, applying the updates in keyframe and shape order: its result
-// is bit-identical to FuseShapesBruteForce, the paper's loops literally.
+// By default (FusionRule::along_normal) the line cast is not the camera's
+// ray but the line through the prior vertex along its
+// outward normal (the segment within NormalReach of the vertex, shape_raycast.h): a camera ray puts a narrow peak over
+// a different vertex for each view (parallax), the normal puts it over the same vertex for every view, so the views'
+// hits at the peak support each other.
+//
+// FuseShapes finds, per shape, only the vertices whose rays (or normal
+// segments) can reach it (a cone around the shape, or a ball around it
+// grown by the reach, over a tree of the vertices, then a 2-D grid over the
+// shape's footprint on the normalised image plane) and runs keyframes in
+// parallel, applying the updates in keyframe and shape order: its result is
+// bit-identical to FuseShapesBruteForce, the paper's loops literally.
 #pragma once
 
 #include <Eigen/Core>
 #include <vector>
 
 #include "base/progress.h"
+#include "geometry/mesh_index.h"
+#include "geometry/point_index.h"
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
 #include "mapping/point_cone_tree.h"
@@ -42,10 +51,15 @@ namespace hull {
 // that at least `support` hits reach is kept (to within band), while one
 // wrong hit above the rest (a wrong match) cannot raise the vertex, and a
 // vertex with fewer than `support` hits stays where it was.
+//
+// along_normal chooses the line each vertex is fused along (the camera's ray
+// through it, as in the paper, or its normal); it is part of the rule because
+// it decides which hits a vertex gathers.
 struct FusionRule {
-  bool keep_peaks = true;  // false: eq. 15, the mean of every hit
-  int support = 2;         // hits that must reach a height (keep_peaks)
-  double band = 0.005;     // m, hits averaged below h_k (keep_peaks)
+  bool keep_peaks = true;    // false: eq. 15, the mean of every hit
+  int support = 2;           // hits that must reach a height (keep_peaks)
+  double band = 0.005;       // m, hits averaged below h_k (keep_peaks)
+  bool along_normal = true;  // false: the camera's ray through the vertex (the paper's)
 };
 
 // Eq. 15: the running mean of a vertex's hits.
@@ -79,6 +93,22 @@ FusionResult FuseShapes(const TriangleMesh& prior, const PointConeTree& prior_tr
 FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<Pose>& x_M_cT,
                                   const std::vector<KeyframeShapes>& shapes, double fusion_radius,
                                   const FusionRule& rule = FusionRule{});
+
+// Before the fusion along normals: a narrow peak reaches the model only
+// where a vertex lies under its top feature (between vertices each view's
+// triangulation interpolates it to a different, lower height). So the prior
+// vertex nearest the foot on the CAD of each feature that is a shape vertex
+// in at least `support` keyframes (the support rule's views) and stands more
+// than min_height above the CAD moves onto that foot: highest feature
+// first, each vertex once, only when the foot lies within max_move of it
+// and none of its faces turns by more than 45 degrees. The vertex stays on
+// the CAD (where it is not fused, its deviation stays 0), and every view's
+// normal line through it meets the feature itself. prior_index indexes
+// prior.vertices as given; normals are recomputed. Deterministic. Returns
+// the number of vertices moved.
+int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
+                           const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
+                           double max_move);
 
 // A vertex's hits (in the order the loops meet them) combined by `rule`;
 // prior/normal: the prior vertex and its outward normal. Sets *support.

@@ -13,6 +13,10 @@ constexpr double kFootprintMargin = 1e-9;
 constexpr double kConeMargin = 1e-7;
 // Wider cones than this bound nothing useful.
 constexpr double kMaxConeHalfAngle = 80.0 * M_PI / 180.0;
+// NormalReach's margin over the shape's largest |deviation| (m): the CAD's
+// curvature under a shape (a 5 m bilge radius bends 0.3 m of hull by 2 mm)
+// and the adjustment's noise, with room to spare.
+constexpr double kNormalReachMargin = 0.05;
 
 }  // namespace
 
@@ -35,7 +39,44 @@ bool RayTriangleFromOrigin(const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
   return true;
 }
 
+bool SegmentTriangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
+                     const Eigen::Vector3d& b, const Eigen::Vector3d& c, double t_max, double* t) {
+  const Eigen::Vector3d e1 = b - a, e2 = c - a;
+  const Eigen::Vector3d pvec = dir.cross(e2);
+  const double det = e1.dot(pvec);
+  if (det == 0 || !std::isfinite(det)) return false;
+  const double inv = 1.0 / det;
+  const Eigen::Vector3d tvec = origin - a;
+  const double u = tvec.dot(pvec) * inv;
+  if (u < 0 || u > 1) return false;
+  const Eigen::Vector3d qvec = tvec.cross(e1);
+  const double v = dir.dot(qvec) * inv;
+  if (v < 0 || u + v > 1) return false;
+  const double tt = e2.dot(qvec) * inv;
+  if (!(tt > 0 && tt <= t_max)) return false;
+  *t = tt;
+  return true;
+}
+
+double NormalReach(const DetectedShape& shape) {
+  double d = 0;
+  for (const double x : shape.deviation) d = std::max(d, std::abs(x));
+  return d + kNormalReachMargin;
+}
+
 namespace {
+
+void TrySegmentTriangle(const DetectedShape& s, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max,
+                        int i, ShapeHit& best) {
+  const Face& f = s.triangles[static_cast<std::size_t>(i)];
+  double t = 0;
+  if (!SegmentTriangle(origin, dir, s.vertices_c[static_cast<std::size_t>(f[0])],
+                       s.vertices_c[static_cast<std::size_t>(f[1])], s.vertices_c[static_cast<std::size_t>(f[2])],
+                       t_max, &t)) {
+    return;
+  }
+  if (!best.hit || t < best.t || (t == best.t && i < best.triangle)) best = {true, t, i};
+}
 
 void TryTriangle(const DetectedShape& s, const Eigen::Vector3d& dir, int i, ShapeHit& best) {
   const Face& f = s.triangles[static_cast<std::size_t>(i)];
@@ -53,6 +94,15 @@ void TryTriangle(const DetectedShape& s, const Eigen::Vector3d& dir, int i, Shap
 ShapeHit FirstShapeHit(const DetectedShape& shape, const Eigen::Vector3d& dir) {
   ShapeHit best;
   for (int i = 0; i < static_cast<int>(shape.triangles.size()); ++i) TryTriangle(shape, dir, i, best);
+  return best;
+}
+
+ShapeHit FirstShapeHitOnSegment(const DetectedShape& shape, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                                double t_max) {
+  ShapeHit best;
+  for (int i = 0; i < static_cast<int>(shape.triangles.size()); ++i) {
+    TrySegmentTriangle(shape, origin, dir, t_max, i, best);
+  }
   return best;
 }
 
@@ -132,6 +182,38 @@ ShapeHit ShapeFootprint::Hit(const Eigen::Vector3d& dir) const {
   for (int k = cell_start_[static_cast<std::size_t>(c)]; k < cell_start_[static_cast<std::size_t>(c) + 1]; ++k) {
     TryTriangle(shape_, dir, tri_[static_cast<std::size_t>(k)], best);
   }
+  return best;
+}
+
+ShapeHit ShapeFootprint::SegmentHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max) const {
+  if (tri_.empty()) return {};
+  const Eigen::Vector3d end = origin + t_max * dir;
+  // A segment not wholly in front of the camera does not project onto a 2-D
+  // segment; it is tried against every triangle (the camera would have to
+  // lie within a vertex's reach of the hull).
+  if (!(origin.z() > 0 && end.z() > 0)) return FirstShapeHitOnSegment(shape_, origin, dir, t_max);
+  Eigen::AlignedBox2d box;
+  box.extend(origin.head<2>() / origin.z());
+  box.extend(end.head<2>() / end.z());
+  box.min().array() -= kFootprintMargin;
+  box.max().array() += kFootprintMargin;
+  const double fx0 = std::floor((box.min().x() - lo_.x()) / cell_), fx1 = std::floor((box.max().x() - lo_.x()) / cell_);
+  const double fy0 = std::floor((box.min().y() - lo_.y()) / cell_), fy1 = std::floor((box.max().y() - lo_.y()) / cell_);
+  if (!(fx1 >= 0 && fy1 >= 0 && fx0 < nx_ && fy0 < ny_)) return {};  // misses the grid (or NaN)
+  const int x0 = static_cast<int>(std::max(fx0, 0.0)), x1 = static_cast<int>(std::min(fx1, nx_ - 1.0));
+  const int y0 = static_cast<int>(std::max(fy0, 0.0)), y1 = static_cast<int>(std::min(fy1, ny_ - 1.0));
+  thread_local std::vector<int> candidates;
+  candidates.clear();
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) {
+      const std::size_t c = static_cast<std::size_t>(y) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(x);
+      candidates.insert(candidates.end(), tri_.begin() + cell_start_[c], tri_.begin() + cell_start_[c + 1]);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  ShapeHit best;
+  for (const int i : candidates) TrySegmentTriangle(shape_, origin, dir, t_max, i, best);
   return best;
 }
 

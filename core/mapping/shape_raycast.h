@@ -6,6 +6,11 @@
 // z = 1, falls inside the triangle's projection, so a 2-D grid over the
 // projected triangles names the few candidates, and a circular cone around
 // the shape bounds every ray that can meet it.
+//
+// The same grid answers the fusion along vertex normals: a segment in front
+// of the camera projects onto z = 1 as the 2-D segment between its ends'
+// projections, so the triangles it meets are among those of the cells that
+// 2-D segment's box covers.
 #pragma once
 
 #include <Eigen/Core>
@@ -22,6 +27,12 @@ namespace hull {
 bool RayTriangleFromOrigin(const Eigen::Vector3d& dir, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                            const Eigen::Vector3d& c, double* t);
 
+// Moeller-Trumbore for the segment origin + t * dir, 0 < t <= t_max,
+// against the triangle (a, b, c), both faces. On a hit, *t is the segment
+// parameter (in units of |dir|).
+bool SegmentTriangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
+                     const Eigen::Vector3d& b, const Eigen::Vector3d& c, double t_max, double* t);
+
 struct ShapeHit {
   bool hit = false;
   double t = 0;       // the point is t * dir
@@ -31,12 +42,28 @@ struct ShapeHit {
 // The first hit of the ray t * dir (t > 0) over all the shape's triangles.
 ShapeHit FirstShapeHit(const DetectedShape& shape, const Eigen::Vector3d& dir);
 
+// The first hit of the segment origin + t * dir (0 < t <= t_max, in the
+// camera frame) over all the shape's triangles: smallest t, ties the
+// smallest triangle index.
+ShapeHit FirstShapeHitOnSegment(const DetectedShape& shape, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
+                                double t_max);
+
+// How far along a model vertex's normal the fusion looks for a shape (m):
+// the shape's largest |deviation| from the CAD plus a margin for the hull's
+// curvature under it. A point of the shape lies no higher above the CAD than
+// its highest vertex (up to that curvature), so no hit over a vertex is
+// farther from it.
+double NormalReach(const DetectedShape& shape);
+
 class ShapeFootprint {
  public:
   explicit ShapeFootprint(const DetectedShape& shape);
 
   // Bit-identical to FirstShapeHit(shape, dir) for every dir.
   ShapeHit Hit(const Eigen::Vector3d& dir) const;
+
+  // Bit-identical to FirstShapeHitOnSegment(shape, origin, dir, t_max).
+  ShapeHit SegmentHit(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_max) const;
 
   // A circular cone from the camera centre holding every ray that can meet
   // the shape: unit axis and the cosine and sine of its half-angle. `narrow`

@@ -18,6 +18,10 @@
 namespace hull {
 namespace {
 
+// Matched objects whose footprints differ by more than this factor are
+// compared over the smaller footprint (CompareSurveys).
+constexpr double kMergedAreaRatio = 1.5;
+
 namespace fs = std::filesystem;
 
 const std::vector<double>& Deviation(const TriangleMesh& m, const char* which) {
@@ -200,6 +204,17 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     const DetectedObject& oa = objects_a[static_cast<std::size_t>(match_of_b[b])];
     c.id_a = oa.id;
     c.height_a = oa.max_height;
+    if (std::max(oa.area, ob.area) > kMergedAreaRatio * std::min(oa.area, ob.area)) {
+      // One map joined what the other split (touching lumps): the larger
+      // object's max may stand on a neighbour, so both maps' heights are
+      // taken over the smaller object's footprint.
+      const bool a_smaller = oa.area <= ob.area;
+      const Eigen::Vector3d at = a_smaller ? oa.centroid_m : Eigen::Vector3d(x_ab * ob.centroid_m);
+      const double area = std::min(oa.area, ob.area);
+      c.height_a = height_near(a_index, dev_a, at, area);
+      c.height_b = height_near(b_index, dev_b, at, area);
+      c.from_height_field = true;
+    }
     c.change = c.height_b - c.height_a;
     c.kind = classify(c.change);
     out.objects.push_back(c);

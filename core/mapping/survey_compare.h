@@ -49,7 +49,11 @@ struct ObjectChange {
   // the other survey saw a bump of at least change_threshold there, the
   // object was there too, below that map's object detection, and is
   // classed by the heights (height_a or height_b is then that field's
-  // height, id_a or id_b empty).
+  // height, id_a or id_b empty). Also set for a matched pair whose
+  // footprints differ by more than 1.5 times in area (one map joined
+  // touching lumps the other split): both heights are then the maps' over
+  // the smaller footprint, so a neighbour's peak in the joined object does
+  // not stand in for the object's own.
   bool from_height_field = false;
 };
 

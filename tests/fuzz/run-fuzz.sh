@@ -8,11 +8,15 @@
 # environment:
 #   FUZZ_SECONDS   time per harness (default 20)
 #   FUZZ_RUNS      stop each harness after this many executions instead (e.g. 10000000)
+#   FUZZ_CPU_SECONDS  stop each harness after the executions it runs in this
+#                  many CPU seconds at its measured rate (docs/reliability.md,
+#                  "Runs and rates"): a count, so with FUZZ_SEED the run is the
+#                  same on a fast and a slow machine (CI: 5)
 #   FUZZ_JOBS      parallel fuzzing processes per harness (default 1)
 #   FUZZ_SEED      libFuzzer's random seed (default: a new one each run). With
-#                  a fixed seed, one job and a fresh FUZZ_BUILD corpus, a run
-#                  executes the same inputs in the same order on any machine:
-#                  a slower one a prefix of a faster one's (CI sets 1)
+#                  a fixed seed, a count of executions (FUZZ_RUNS or
+#                  FUZZ_CPU_SECONDS), one job and a fresh FUZZ_BUILD corpus, a
+#                  run executes the same inputs on any machine (CI sets 1)
 #   FUZZ_BUILD     build folder (default build-fuzz)
 #   FUZZ_NO_BUILD  set to 1 to use the harnesses already built
 # Findings go to $FUZZ_BUILD/fuzz-artifacts/<harness>/; the corpus grown by a
@@ -67,9 +71,34 @@ if [ -z "${TMPDIR:-}" ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$PWD/$src/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-limit=(-max_total_time="$seconds")
-[ -z "${FUZZ_RUNS:-}" ] || limit=(-runs="$FUZZ_RUNS")
-[ -z "${FUZZ_SEED:-}" ] || limit+=(-seed="$FUZZ_SEED")
+# Executions per CPU second of each harness (docs/reliability.md, "Runs and
+# rates", 30 s runs; rounded down).
+rate() {
+  case $1 in
+    survey_json) echo 365 ;;
+    survey_nav | survey_odometry | survey_features) echo 170 ;;
+    survey_dvl) echo 220 ;;
+    survey_landmarks | survey_truth) echo 150 ;;
+    sonar_json) echo 900 ;;
+    sonar_controls | sonar_measurements) echo 400 ;;
+    mesh_stl | mesh_ply | mesh_obj | mesh_off | mesh_gz | project) echo 4000 ;;
+    mesh_gltf) echo 130 ;;
+    mesh_step) echo 95 ;;
+    image) echo 11000 ;;
+    json) echo 8800 ;;
+    *) echo 100 ;;
+  esac
+}
+limit_for() {
+  if [ -n "${FUZZ_CPU_SECONDS:-}" ]; then
+    echo "-runs=$(($(rate "$1") * FUZZ_CPU_SECONDS))"
+  elif [ -n "${FUZZ_RUNS:-}" ]; then
+    echo "-runs=$FUZZ_RUNS"
+  else
+    echo "-max_total_time=$seconds"
+  fi
+  [ -z "${FUZZ_SEED:-}" ] || echo "-seed=$FUZZ_SEED"
+}
 fork=()
 [ "$jobs" -le 1 ] || fork=(-fork="$jobs")
 failed=()
@@ -80,7 +109,8 @@ for h in "${harnesses[@]}"; do
   art="$build/fuzz-artifacts/$h"
   mkdir -p "$work" "$art"
   log="$build/fuzz-artifacts/$h.log"
-  echo "== fuzz_$h (${FUZZ_RUNS:+$FUZZ_RUNS runs}${FUZZ_RUNS:-$seconds s})"
+  mapfile -t limit < <(limit_for "$h")
+  echo "== fuzz_$h (${limit[*]})"
   # shellcheck disable=SC2046
   if "$exe" "${limit[@]}" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 -max_len="$(max_len "$h")" \
     -print_final_stats=1 -artifact_prefix="$art/" $(dict "$h") \

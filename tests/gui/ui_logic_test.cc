@@ -53,6 +53,21 @@ QByteArray ReadText(const QString& path) {
 
 // The project fuzz harness's seeds (tests/fuzz/corpus/project): projects as
 // the GUI saves them, each relative to the folder `dir` of its file.
+// A view a user changed: the placement, every kind of scene setting and the
+// camera away from their defaults.
+void ChangeViewAsAUserWould(ProjectData* p) {
+  p->placement = QStringLiteral("guess");
+  p->scene.visible[SceneLayer::kDvlHits] = false;
+  p->scene.visible[SceneLayer::kFrusta] = true;
+  p->scene.hull_edges = true;
+  p->scene.colouring = LandmarkColouring::kDeviation;
+  p->scene.auto_range = false;
+  p->scene.range_min = -0.02;
+  p->scene.range_max = 0.2;
+  p->scene.frustum_stride = 4;
+  p->camera = CameraState{{{1.5, -2, 12.25}}, {{0.5, 0.25, 9}}, {{0, 1, 0}}, 25.0};
+}
+
 std::vector<std::pair<QString, ProjectData>> ProjectSeeds(const QString& dir) {
   std::vector<std::pair<QString, ProjectData>> seeds;
   ProjectData empty;  // "Save project" with nothing open
@@ -65,16 +80,7 @@ std::vector<std::pair<QString, ProjectData>> ProjectSeeds(const QString& dir) {
   p.parameters.insert(QStringLiteral("sigma1"), 0.035);
   p.parameters.insert(QStringLiteral("dbscan_min_points"), 7);
   p.parameters.insert(QStringLiteral("fe_window"), 80.0);
-  p.placement = QStringLiteral("guess");
-  p.scene.visible[SceneLayer::kDvlHits] = false;
-  p.scene.visible[SceneLayer::kFrusta] = true;
-  p.scene.hull_edges = true;
-  p.scene.colouring = LandmarkColouring::kDeviation;
-  p.scene.auto_range = false;
-  p.scene.range_min = -0.02;
-  p.scene.range_max = 0.2;
-  p.scene.frustum_stride = 4;
-  p.camera = CameraState{{{1.5, -2, 12.25}}, {{0.5, 0.25, 9}}, {{0, 1, 0}}, 25.0};
+  ChangeViewAsAUserWould(&p);
   seeds.emplace_back(QStringLiteral("inspection.hiproj"), p);
 
   ProjectData q = empty;  // saved inside the survey folder, the mesh beside it; every layer off
@@ -255,16 +261,7 @@ class UiLogicTest : public QObject {
     p.parameters.insert(QStringLiteral("sigma1"), 0.035);
     p.parameters.insert(QStringLiteral("model"), QStringLiteral("naive"));
     p.parameters.insert(QStringLiteral("dbscan_min_points"), 7);
-    p.placement = QStringLiteral("guess");
-    p.scene.visible[SceneLayer::kDvlHits] = false;
-    p.scene.visible[SceneLayer::kFrusta] = true;
-    p.scene.hull_edges = true;
-    p.scene.colouring = LandmarkColouring::kDeviation;
-    p.scene.auto_range = false;
-    p.scene.range_min = -0.02;
-    p.scene.range_max = 0.2;
-    p.scene.frustum_stride = 4;
-    p.camera = CameraState{{{1.5, -2, 12.25}}, {{0.5, 0.25, 9}}, {{0, 1, 0}}, 25.0};
+    ChangeViewAsAUserWould(&p);
     const QString file = dir.filePath(QStringLiteral("inspection.hiproj"));
     WriteProject(file, p);
     const ProjectData q = ReadProject(file, DefaultParameterTable(), CheckDefaultParameters);

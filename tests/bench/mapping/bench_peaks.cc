@@ -1,7 +1,7 @@
 // Object heights and survey change end to end (issue 12, parts 1 and 4;
 // docs/benchmarks.md, "Peaks per true object"):
 //   bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]
-//               [--min-features N] [--tau M]
+//               [--fusion normal|peaks|mean] [--min-features N] [--tau M]
 // The preset is simulated and written as a bundle (as `hullinspect-cli
 // simulate` writes it), read back and run through the whole pipeline with
 // its default options (as `hullinspect-cli run`: alignment, max-mixture
@@ -16,6 +16,7 @@
 // every new, removed and >= 3 cm grown object reported, none false, the
 // growth error. --keep DIR keeps the bundles and adjustments there; --reuse
 // then maps the kept adjustments again (a change to the mapping in seconds).
+// --fusion chooses the fusion as `hullinspect-cli map --fusion` does.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -116,7 +117,7 @@ void Explain(const std::vector<hull::ObjectHeightCheck>& checks, const std::stri
 // `reuse` and both there, the adjustment is read back and only the mapping
 // runs (as `hullinspect-cli map` would on it).
 Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, const fs::path& dir, int threads,
-              bool reuse, const std::string& explain, int min_features, double tau) {
+              bool reuse, const std::string& explain, const std::string& fusion, int min_features, double tau) {
   hull::NullProgress p;
   Survey s;
   s.sim = hull::SimulateSurvey(so, p);
@@ -127,6 +128,8 @@ Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, 
   hull::PipelineOptions o;
   o.adjustment.num_threads = threads;
   o.mapping.num_threads = threads;
+  o.mapping.fusion_keep_peaks = fusion != "mean";
+  o.mapping.fusion_along_normal = fusion == "normal";
   if (min_features >= 0) o.mapping.object_min_features = min_features;
   if (tau >= 0) o.mapping.tau = tau;
   const auto t = Clock::now();
@@ -272,7 +275,7 @@ int main(int argc, char** argv) {
   double tau = -1;
   bool pair = false, reuse = false;
   std::string explain;
-  std::string preset = "demo", keep;
+  std::string preset = "demo", keep, fusion = "normal";
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       threads = std::atoi(argv[++i]);
@@ -286,6 +289,10 @@ int main(int argc, char** argv) {
       min_features = std::atoi(argv[++i]);
     } else if (!std::strcmp(argv[i], "--tau") && i + 1 < argc) {
       tau = std::atof(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--fusion") && i + 1 < argc &&
+               (!std::strcmp(argv[i + 1], "normal") || !std::strcmp(argv[i + 1], "peaks") ||
+                !std::strcmp(argv[i + 1], "mean"))) {
+      fusion = argv[++i];
     } else if (!std::strcmp(argv[i], "--reuse")) {
       reuse = true;
     } else if (!std::strcmp(argv[i], "--pair")) {
@@ -294,7 +301,7 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT] "
-          "[--min-features N] [--tau M]\n");
+          "[--fusion normal|peaks|mean] [--min-features N] [--tau M]\n");
       return 2;
     }
   }
@@ -302,14 +309,14 @@ int main(int argc, char** argv) {
       keep.empty() ? fs::temp_directory_path() / ("bench_peaks-" + std::to_string(::getpid())) : fs::path(keep);
   fs::create_directories(dir);
   const hull::SurveySimulationOptions oa = hull::SurveyPreset(preset);
-  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, min_features, tau);
+  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, fusion, min_features, tau);
   if (pair) {
     hull::SurveySimulationOptions ob = oa;
     ob.changes.grow = 2;
     ob.changes.remove = 1;
     ob.changes.add = 2;
-    const Survey b =
-        RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain, min_features, tau);
+    const Survey b = RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain,
+                            fusion, min_features, tau);
     ComparePair(a, b);
   }
   if (keep.empty()) fs::remove_all(dir);

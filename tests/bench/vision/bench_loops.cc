@@ -20,6 +20,7 @@
 
 #include "base/progress.h"
 #include "geometry/mesh_index.h"
+#include "simulate/image_track_truth.h"
 #include "simulate/true_scene.h"
 #include "support/bench_clock.h"
 #include "survey/survey_io.h"
@@ -170,16 +171,10 @@ int main(int argc, char** argv) {
   t.scene = scene.get();
   t.x_Mg = Pose::FromVector(bundle.truth->x_gM).Inverse();
   t.K = CameraMatrix(bundle.manifest.camera.top);
-  SurveyManifest true_man = bundle.manifest;
-  true_man.camera.servo_to_top = bundle.truth->x_s_cT;
   std::vector<Pose> x_g_v;
   for (std::size_t k = 0; k < bundle.nav.size(); ++k) {
-    const TruePose& tp = bundle.truth->poses.at(k);
-    NavRecord n = bundle.nav[k];
-    n.x_gv = tp.x_gv;
-    n.servo = tp.servo;
-    t.x_g_c.push_back(CameraPoseFromNav(true_man, n));
-    x_g_v.push_back(Pose::FromVector(tp.x_gv));
+    t.x_g_c.push_back(t.x_Mg.Inverse() * TrueCameraPoseFromTruth(bundle, k, false));
+    x_g_v.push_back(Pose::FromVector(bundle.truth->poses.at(k).x_gv));
   }
   t.leg = Legs(x_g_v);
   std::printf("%s: %zu keyframes, %d legs\n", dir.c_str(), bundle.nav.size(),

@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "geometry/mesh_index.h"
+#include "geometry/point_index.h"
 #include "mapping/mapper.h"
 #include "mapping/mesh_refinement.h"
 #include "mapping/refinement_region.h"
@@ -95,38 +96,99 @@ TEST(Fusion, FastEqualsThePapersLoopsBitForBit) {
     const RefinedMesh refined = RefineMesh(s.cad, index, DepartureRegion(shapes, cams, index, o, p), o.refine_edge);
     const TriangleMesh& prior = refined.mesh;
     const PointConeTree tree(prior.vertices);
-    FusionRule mean;
+    FusionRule mean;  // eq. 15 as in the paper: the mean of the camera rays' hits
     mean.keep_peaks = false;
+    mean.along_normal = false;
     const FusionResult brute_mean = FuseShapesBruteForce(prior, cams, shapes, o.fusion_radius, mean);
     const FusionResult fast_mean = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, mean, p);
     EXPECT_EQ(fast_mean.count, brute_mean.count);
     EXPECT_EQ(fast_mean.vertices, brute_mean.vertices);
-    const FusionResult brute = FuseShapesBruteForce(prior, cams, shapes, o.fusion_radius);
-    const FusionResult fast = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, FusionRule{}, p);
-    EXPECT_GT(brute.hits, 500u);
-    EXPECT_EQ(fast.hits, brute.hits);
-    EXPECT_EQ(fast.count, brute.count);
-    EXPECT_EQ(fast.support, brute.support);
-    EXPECT_EQ(fast.vertices, brute.vertices);
-    // A fused vertex rests on its supported hits: on the disk's top 0.1 m
-    // below the CAD (the features' height), elsewhere near the plane.
-    const MeshIndex cad(s.cad);
-    int on_top = 0;
-    for (std::size_t v = 0; v < prior.num_vertices(); ++v) {
-      if (fast.support[v] == 0) {
-        EXPECT_EQ(fast.vertices[v], prior.vertices[v]);
-        continue;
+    // The peak-keeping rule along the camera's rays and along the normals.
+    for (const bool along_normal : {false, true}) {
+      SCOPED_TRACE(along_normal ? "along the normals" : "along the camera's rays");
+      FusionRule rule;
+      rule.along_normal = along_normal;
+      const FusionResult brute = FuseShapesBruteForce(prior, cams, shapes, o.fusion_radius, rule);
+      const FusionResult fast = FuseShapes(prior, tree, cams, shapes, o.fusion_radius, rule, p);
+      EXPECT_GT(brute.hits, 500u);
+      EXPECT_EQ(fast.hits, brute.hits);
+      EXPECT_EQ(fast.count, brute.count);
+      EXPECT_EQ(fast.support, brute.support);
+      EXPECT_EQ(fast.vertices, brute.vertices);
+      // A fused vertex rests on its supported hits: on the disk's top 0.1 m
+      // below the CAD (the features' height), elsewhere near the plane; along
+      // the normal it moves along -z only.
+      int on_top = 0;
+      for (std::size_t v = 0; v < prior.num_vertices(); ++v) {
+        if (fast.support[v] == 0) {
+          EXPECT_EQ(fast.vertices[v], prior.vertices[v]);
+          continue;
+        }
+        if (along_normal) {
+          EXPECT_NEAR((fast.vertices[v] - prior.vertices[v]).head<2>().norm(), 0.0, 1e-9);
+        }
+        const double r = (prior.vertices[v].head<2>() - kDisk).norm();
+        if (r < kRadius - 0.06) {
+          EXPECT_NEAR(-fast.vertices[v].z(), kHeight, 0.002 + 3 * noise);
+          ++on_top;
+        } else if (r > kRadius + 0.15) {
+          EXPECT_NEAR(fast.vertices[v].z(), 0.0, 0.002 + 3 * noise);
+        }
       }
-      const double r = (prior.vertices[v].head<2>() - kDisk).norm();
-      if (r < kRadius - 0.06) {
-        EXPECT_NEAR(-fast.vertices[v].z(), kHeight, 0.002 + 3 * noise);
-        ++on_top;
-      } else if (r > kRadius + 0.15) {
-        EXPECT_NEAR(fast.vertices[v].z(), 0.0, 0.002 + 3 * noise);
-      }
+      EXPECT_GT(on_top, 100);
     }
-    EXPECT_GT(on_top, 100);
   }
+}
+
+TEST(Fusion, VerticesMovedUnderFeaturesStayOnTheCad) {
+  const Scene s = MakeScene(0.0);
+  MappingOptions o;
+  NullProgress p;
+  const std::vector<KeyframeShapes> shapes = DetectAllShapes(s.input, o, p);
+  const std::vector<Pose> cams = CameraPoses(s.input);
+  const MeshIndex index(s.cad);
+  const RefinedMesh refined = RefineMesh(s.cad, index, DepartureRegion(shapes, cams, index, o, p), o.refine_edge);
+  TriangleMesh snapped = refined.mesh;
+  const PointIndex prior_index(snapped.vertices);
+  const int moved = SnapVerticesToFeatures(snapped, prior_index, index, shapes, Pose(), o.fusion_support,
+                                           o.refine_threshold, 0.6 * o.refine_edge);
+  // The disk's features (0.1 m high, in several keyframes' shapes) each move
+  // one vertex; the flat hull's (below refine_threshold) none.
+  EXPECT_GT(moved, 50);
+  int changed = 0;
+  for (std::size_t v = 0; v < snapped.num_vertices(); ++v) {
+    if (snapped.vertices[v] == refined.mesh.vertices[v]) continue;
+    ++changed;
+    EXPECT_NEAR(snapped.vertices[v].z(), 0.0, 1e-12);  // on the CAD
+    EXPECT_LE((snapped.vertices[v] - refined.mesh.vertices[v]).norm(), 0.6 * o.refine_edge + 1e-12);
+    // Under a feature of the disk's top: some landmark's foot is the vertex.
+    double nearest = 1e9;
+    for (const auto& l : s.input.landmarks) {
+      if (l.p_g.z() < -o.refine_threshold)
+        nearest = std::min(nearest, (l.p_g.head<2>() - snapped.vertices[v].head<2>()).norm());
+    }
+    EXPECT_LT(nearest, 1e-9);
+  }
+  EXPECT_EQ(changed, moved);
+  // No face flipped (the CAD faces -z).
+  snapped.ComputeNormals();
+  for (const auto& n : snapped.face_normals) EXPECT_LT(n.z(), -0.99);
+  // The fusion along the normals on it: fast equals brute force, and the
+  // disk's top is kept.
+  FusionRule rule;
+  rule.along_normal = true;
+  const PointConeTree tree(snapped.vertices);
+  const FusionResult brute = FuseShapesBruteForce(snapped, cams, shapes, o.fusion_radius, rule);
+  const FusionResult fast = FuseShapes(snapped, tree, cams, shapes, o.fusion_radius, rule, p);
+  EXPECT_EQ(fast.vertices, brute.vertices);
+  EXPECT_EQ(fast.support, brute.support);
+  int on_top = 0;
+  for (std::size_t v = 0; v < snapped.num_vertices(); ++v) {
+    if (fast.support[v] == 0 || (snapped.vertices[v].head<2>() - kDisk).norm() > kRadius - 0.06) continue;
+    EXPECT_NEAR(-fast.vertices[v].z(), kHeight, 1e-9);
+    ++on_top;
+  }
+  EXPECT_GT(on_top, 100);
 }
 
 TEST(Refinement, OnlyWhereShapesDepartAndOnTheCad) {
@@ -192,10 +254,12 @@ TEST(Mapper, ObjectInspectionAndCaching) {
   EXPECT_EQ(obj.id, "obj-1");
   EXPECT_LT((obj.centroid_m.head<2>() - kDisk).norm(), 0.02);
   EXPECT_NEAR(obj.centroid_m.z(), 0.0, 1e-9);  // on the CAD surface
-  // The footprint where the fused model rises above h_min: the disk, and a
-  // little more where the shapes slope from its rim to the next hull feature
-  // (about 0.13 m away at 60 features per m^2).
-  EXPECT_GT(obj.area, M_PI * kRadius * kRadius * 0.95);
+  // The footprint where the fused model rises above h_min: the disk, less
+  // the rim outside its outermost features (along the normals the disk's
+  // shapes end there: 0.262 m^2 of 0.283), or a little more where the
+  // camera rays' shapes slope from its rim to the next hull feature (about
+  // 0.13 m away at 60 features per m^2).
+  EXPECT_GT(obj.area, M_PI * kRadius * kRadius * 0.9);
   EXPECT_LT(obj.area, M_PI * (kRadius + 0.08) * (kRadius + 0.08));
   EXPECT_NEAR(obj.max_height, kHeight, 0.01);
   EXPECT_NEAR(obj.mean_height, kHeight, 0.015);

@@ -324,10 +324,14 @@ void ModelStaysOnTheCadAwayFromObjects(const std::string& preset) {
     EXPECT_GT(away, 1000u);
     // Within 1 cm except where the features it passes through lie further
     // off themselves (2-6 % of the adjusted hull features do, up to 2.5 cm):
-    // no larger a share beyond 1 cm than the features', and no worse.
+    // no larger a share beyond 1 cm than the features', and no worse than
+    // the worst of them by more than a millimetre (a shape's flat triangle
+    // between features below a convex hull lies deeper than they do, by its
+    // sagitta; along the normals the demo's worst fused vertex is 0.8 mm
+    // beyond its worst feature).
     EXPECT_LE(static_cast<double>(beyond) / static_cast<double>(fused.size()), hull_beyond_share + 0.005);
     EXPECT_LE(p99, hull[hull.size() * 99 / 100] + 0.001);
-    EXPECT_LE(worst, hull.back());
+    EXPECT_LE(worst, hull.back() + 0.001);
     // With the dense parameters the hull's own features form shapes (at
     // tau = 0 they cover much of what was seen), so this is no empty claim.
     if (params == Params::kDense) {
@@ -399,24 +403,33 @@ void FastFusionEqualsThePapersLoops(const std::string& preset) {
   Case& c = GetCase(preset);
   Mapper& mapper = *c.mappers.at(Params::kDense);
   NullProgress p;
-  const MappingResult last = mapper.Run(Options(Params::kDense, 0.0), p);  // fused into prior_mesh()
-  ASSERT_NE(mapper.prior_mesh(), nullptr);
-  const TriangleMesh& prior = *mapper.prior_mesh();
-  std::vector<Pose> x_M_cT;
-  for (const auto& k : mapper.input().keyframes) x_M_cT.push_back(mapper.input().x_gM.Inverse() * k.x_g_cT);
-  const FusionRule rule{last.options.fusion_keep_peaks, last.options.fusion_support, last.options.fusion_peak_band};
-  const FusionResult brute = FuseShapesBruteForce(prior, x_M_cT, last.keyframes, last.options.fusion_radius, rule);
-  const FusionResult fast =
-      FuseShapes(prior, PointConeTree(prior.vertices), x_M_cT, last.keyframes, last.options.fusion_radius, rule, p);
-  ASSERT_EQ(fast.vertices.size(), brute.vertices.size());
-  EXPECT_EQ(fast.hits, brute.hits);
-  EXPECT_GT(fast.hits, 1000u);
-  std::size_t differ = 0;
-  for (std::size_t v = 0; v < fast.vertices.size(); ++v) {
-    differ += fast.count[v] != brute.count[v] || fast.vertices[v] != brute.vertices[v];
+  // Along the camera's rays (the paper's) and along the vertex normals (the
+  // default; its prior is the refined mesh with vertices moved under
+  // features).
+  for (const bool along_normal : {false, true}) {
+    SCOPED_TRACE(along_normal ? "along the normals" : "along the camera's rays");
+    MappingOptions options = Options(Params::kDense, 0.0);
+    options.fusion_along_normal = along_normal;
+    const MappingResult last = mapper.Run(options, p);  // fused into prior_mesh()
+    ASSERT_NE(mapper.prior_mesh(), nullptr);
+    const TriangleMesh& prior = *mapper.prior_mesh();
+    std::vector<Pose> x_M_cT;
+    for (const auto& k : mapper.input().keyframes) x_M_cT.push_back(mapper.input().x_gM.Inverse() * k.x_g_cT);
+    const FusionRule rule{last.options.fusion_keep_peaks, last.options.fusion_support, last.options.fusion_peak_band,
+                          last.options.fusion_along_normal};
+    const FusionResult brute = FuseShapesBruteForce(prior, x_M_cT, last.keyframes, last.options.fusion_radius, rule);
+    const FusionResult fast =
+        FuseShapes(prior, PointConeTree(prior.vertices), x_M_cT, last.keyframes, last.options.fusion_radius, rule, p);
+    ASSERT_EQ(fast.vertices.size(), brute.vertices.size());
+    EXPECT_EQ(fast.hits, brute.hits);
+    EXPECT_GT(fast.hits, 1000u);
+    std::size_t differ = 0;
+    for (std::size_t v = 0; v < fast.vertices.size(); ++v) {
+      differ += fast.count[v] != brute.count[v] || fast.vertices[v] != brute.vertices[v];
+    }
+    EXPECT_EQ(differ, 0u);
+    EXPECT_EQ(last.model.vertices, fast.vertices);  // the run's model is that fusion
   }
-  EXPECT_EQ(differ, 0u);
-  EXPECT_EQ(last.model.vertices, fast.vertices);  // the run's model is that fusion
 }
 
 void WritesTheResultsFolder(const std::string& preset) {

@@ -22,6 +22,15 @@
 
 namespace hull {
 namespace {
+
+// A manifest whose top camera is 640 x 512 with f = 560 px.
+SurveyManifest SmallCamera() {
+  SurveyManifest man;
+  man.camera.width = 640;
+  man.camera.height = 512;
+  man.camera.top = PinholeIntrinsics{560, 560, 319.5, 255.5};
+  return man;
+}
 namespace fs = std::filesystem;
 using testing::MakeTwoTrackScene;
 using testing::ScratchDir;
@@ -42,10 +51,7 @@ DvlRecord DvlToPlane(const SurveyManifest& man, double depth) {
 }
 
 TEST(LoopClosure, DvlFootprintLiesOnThePlaneOfTheReturns) {
-  SurveyManifest man;
-  man.camera.width = 640;
-  man.camera.height = 512;
-  man.camera.top = PinholeIntrinsics{560, 560, 319.5, 255.5};
+  const SurveyManifest man = SmallCamera();
   const KeyframeFootprint f = DvlFootprint(man, DvlToPlane(man, 1.5), 100);
   ASSERT_EQ(f.source, KeyframeFootprint::Source::kDvl);
   ASSERT_GE(f.points.size(), 90u);
@@ -106,10 +112,7 @@ std::vector<LoopKeyframe> Lawnmower(const SurveyManifest& man, int tracks, int p
 }
 
 TEST(LoopClosure, CandidatesAreOverlappingKeyframesOfOtherTracks) {
-  SurveyManifest man;
-  man.camera.width = 640;
-  man.camera.height = 512;
-  man.camera.top = PinholeIntrinsics{560, 560, 319.5, 255.5};
+  const SurveyManifest man = SmallCamera();
   std::vector<int> track;
   const std::vector<LoopKeyframe> kf = Lawnmower(man, 3, 10, &track);
   LoopOptions o;
