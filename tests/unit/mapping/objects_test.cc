@@ -121,11 +121,13 @@ TEST(DetectedObjects, NarrowLumpHeldUpByFeaturesFromSeveralViews) {
   const Plate plate = MakePlate(0.10, 0.03);
   const std::vector<Landmark> three = {
       {{0.0, 0.0, -0.098}, 0.003}, {{0.01, 0.005, -0.09}, 0.003}, {{-0.005, 0.01, -0.09}, 0.003}};
-  MappingOptions area_only;
-  area_only.object_min_features = 0;
+  const MappingOptions area_only;  // the default: the area test alone
+  EXPECT_EQ(area_only.object_min_features, 0);
   EXPECT_TRUE(Detect(plate, three, 2, area_only).objects.empty());  // the footprint alone is too small
 
-  const ObjectDetection d = Detect(plate, three, 2);
+  MappingOptions support;
+  support.object_min_features = 3;
+  const ObjectDetection d = Detect(plate, three, 2, support);
   ASSERT_EQ(d.objects.size(), 1u);
   const DetectedObject& o = d.objects[0];
   EXPECT_GT(o.area, 0.0);
@@ -135,14 +137,14 @@ TEST(DetectedObjects, NarrowLumpHeldUpByFeaturesFromSeveralViews) {
   EXPECT_EQ(o.num_views, 2);
 
   // One view only, two features only, or a third feature below h_min: no object.
-  EXPECT_TRUE(Detect(plate, three, 1).objects.empty());
-  EXPECT_TRUE(Detect(plate, {three[0], three[1]}, 2).objects.empty());
-  EXPECT_TRUE(Detect(plate, {three[0], three[1], {{0.01, -0.01, -0.02}, 0.003}}, 2).objects.empty());
+  EXPECT_TRUE(Detect(plate, three, 1, support).objects.empty());
+  EXPECT_TRUE(Detect(plate, {three[0], three[1]}, 2, support).objects.empty());
+  EXPECT_TRUE(Detect(plate, {three[0], three[1], {{0.01, -0.01, -0.02}, 0.003}}, 2, support).objects.empty());
   // The thresholds are options.
   MappingOptions two;
   two.object_min_features = 2;
   EXPECT_EQ(Detect(plate, {three[0], three[1]}, 2, two).objects.size(), 1u);
-  MappingOptions three_views;
+  MappingOptions three_views = support;
   three_views.object_min_views = 3;
   EXPECT_TRUE(Detect(plate, three, 2, three_views).objects.empty());
   EXPECT_EQ(Detect(plate, three, 3, three_views).objects.size(), 1u);
