@@ -141,9 +141,16 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   // its area about p on A's placement, at most match_radius; a vertex no
   // shape was fused into stands at its CAD height, 0); where the model has
   // no vertex that close (a coarse stretch nothing was fused into), its
-  // nearest vertex's.
-  auto height_near = [&](const PointIndex& at, const std::vector<double>& dev, const Eigen::Vector3d& p, double area) {
-    const double r = std::clamp(std::sqrt(std::max(area, 0.0) / M_PI), 0.05, o.match_radius);
+  // nearest vertex's. For an object only one map detected, the disc is
+  // widened by twice the registration's centroid residual: that is how far
+  // the other map's view of the same lump may stand (a grown lump that only
+  // B detected, small, otherwise read the flat hull beside A's peak and came
+  // out "new").
+  const double misplacement = 2 * out.registration.rms;
+  auto height_near = [&](const PointIndex& at, const std::vector<double>& dev, const Eigen::Vector3d& p, double area,
+                         bool unmatched) {
+    const double r =
+        std::clamp(std::sqrt(std::max(area, 0.0) / M_PI) + (unmatched ? misplacement : 0.0), 0.05, o.match_radius);
     double h = -std::numeric_limits<double>::infinity();
     for (const auto& hit : at.Within(p, r)) h = std::max(h, dev[static_cast<std::size_t>(hit.first)]);
     if (std::isfinite(h)) return h;
@@ -187,7 +194,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     c.centroid = ob.centroid_m;
     c.height_b = ob.max_height;
     if (match_of_b[b] < 0) {
-      const double h_a = height_near(a_index, dev_a, x_ab * ob.centroid_m, ob.area);
+      const double h_a = height_near(a_index, dev_a, x_ab * ob.centroid_m, ob.area, true);
       if (h_a >= o.change_threshold) {  // there in A too, below A's detection
         c.from_height_field = true;
         c.height_a = h_a;
@@ -211,8 +218,8 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
       const bool a_smaller = oa.area <= ob.area;
       const Eigen::Vector3d at = a_smaller ? oa.centroid_m : Eigen::Vector3d(x_ab * ob.centroid_m);
       const double area = std::min(oa.area, ob.area);
-      c.height_a = height_near(a_index, dev_a, at, area);
-      c.height_b = height_near(b_index, dev_b, at, area);
+      c.height_a = height_near(a_index, dev_a, at, area, false);
+      c.height_b = height_near(b_index, dev_b, at, area, false);
       c.from_height_field = true;
     }
     c.change = c.height_b - c.height_a;
@@ -228,7 +235,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     c.centroid = objects_a[a].centroid_m;
     c.height_a = objects_a[a].max_height;
     c.change = -c.height_a;
-    const double h_b = height_near(b_index, dev_b, objects_a[a].centroid_m, objects_a[a].area);
+    const double h_b = height_near(b_index, dev_b, objects_a[a].centroid_m, objects_a[a].area, true);
     if (h_b >= o.change_threshold) {  // still there in B, below B's detection
       c.from_height_field = true;
       c.height_b = h_b;
