@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace hull {
 namespace {
@@ -22,21 +23,7 @@ constexpr double kNormalReachMargin = 0.05;
 
 bool RayTriangleFromOrigin(const Eigen::Vector3d& dir, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                            const Eigen::Vector3d& c, double* t) {
-  const Eigen::Vector3d e1 = b - a, e2 = c - a;
-  const Eigen::Vector3d pvec = dir.cross(e2);
-  const double det = e1.dot(pvec);
-  if (det == 0 || !std::isfinite(det)) return false;
-  const double inv = 1.0 / det;
-  const Eigen::Vector3d tvec = -a;
-  const double u = tvec.dot(pvec) * inv;
-  if (u < 0 || u > 1) return false;
-  const Eigen::Vector3d qvec = tvec.cross(e1);
-  const double v = dir.dot(qvec) * inv;
-  if (v < 0 || u + v > 1) return false;
-  const double tt = e2.dot(qvec) * inv;
-  if (!(tt > 0)) return false;
-  *t = tt;
-  return true;
+  return SegmentTriangle(Eigen::Vector3d::Zero(), dir, a, b, c, std::numeric_limits<double>::infinity(), t);
 }
 
 bool SegmentTriangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
