@@ -21,9 +21,13 @@ bool EndsWith(std::string_view s, std::string_view suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
+std::string AsciiLower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
 std::string MeshExtension(const std::string& path) {
-  std::string p = path;
-  std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::string p = AsciiLower(path);
   if (EndsWith(p, ".gz")) p.resize(p.size() - 3);
   return std::filesystem::path(p).extension().string();
 }

@@ -16,5 +16,7 @@ void WriteFileAtomic(const std::string& path, std::string_view data);
 // Lower-case extension without the ".gz" suffix: "hull.stl.gz" -> ".stl".
 std::string MeshExtension(const std::string& path);
 bool EndsWith(std::string_view s, std::string_view suffix);
+// s with the ASCII letters in lower case (extensions, keys).
+std::string AsciiLower(std::string s);
 
 }  // namespace hull

@@ -180,10 +180,7 @@ void SaveMesh(const TriangleMesh& mesh, const std::string& path, const MeshSaveO
   } else {
     throw std::invalid_argument("SaveMesh " + path + ": cannot write '" + ext + "' files; use .ply, .obj or .stl");
   }
-  std::string lower = path;
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (EndsWith(lower, ".gz")) data = Gzip(data, path);
+  if (EndsWith(AsciiLower(path), ".gz")) data = Gzip(data, path);
   WriteFileAtomic(path, data);
 }
 

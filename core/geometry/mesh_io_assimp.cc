@@ -8,8 +8,6 @@
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdint>
 #include <set>
 #include <string>
@@ -21,11 +19,6 @@ namespace hull::mesh_io_internal {
 
 namespace {
 
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 // Only the importers assimp registers for the file's extension may read it.
 // When several claim the extension (glTF 1 and 2 both claim .gltf) and none
 // recognises the content, assimp would go on to every importer's signature
@@ -36,14 +29,14 @@ std::string Lower(std::string s) {
 // name assimp will open (the memory file's name for an inflated file).
 void RequireImporterForExtension(const Assimp::Importer& importer, const std::string& name, Assimp::IOSystem* io,
                                  const std::string& file) {
-  const std::string lower = Lower(name);
+  const std::string lower = AsciiLower(name);
   std::vector<const Assimp::BaseImporter*> candidates;
   for (std::size_t i = 0; i < importer.GetImporterCount(); ++i) {
     Assimp::BaseImporter* candidate = importer.GetImporter(i);
     std::set<std::string> extensions;
     candidate->GetExtensionList(extensions);
     for (const std::string& e : extensions) {
-      if (EndsWith(lower, "." + Lower(e))) {
+      if (EndsWith(lower, "." + AsciiLower(e))) {
         candidates.push_back(candidate);
         break;
       }
@@ -69,7 +62,7 @@ RawMesh ReadWithAssimp(const std::string& data, const std::string& file, const s
   // an OBJ's .mtl) are found; a compressed one from the inflated memory.
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
-  if (EndsWith(Lower(file), ".gz")) {
+  if (EndsWith(AsciiLower(file), ".gz")) {
     const std::string hint = ext.empty() ? std::string() : ext.substr(1);
     const auto* bytes = reinterpret_cast<const std::uint8_t*>(data.data());
     Assimp::MemoryIOSystem memory(bytes, data.size(), importer.GetIOHandler());

@@ -50,9 +50,7 @@ std::string ReadBytes(const std::string& path) {
 }
 
 std::string LowerExtension(const std::string& path) {
-  std::string e = std::filesystem::path(path).extension().string();
-  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return e;
+  return AsciiLower(std::filesystem::path(path).extension().string());
 }
 
 }  // namespace

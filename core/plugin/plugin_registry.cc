@@ -10,6 +10,7 @@
 #include <set>
 
 #include "base/error.h"
+#include "base/file_io.h"
 #include "plugin/plugin_tag.h"
 
 namespace hull::plugin {
@@ -29,11 +30,6 @@ std::string ReadHead(const std::string& path) {
   return head;
 }
 
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 // Collects the extensions of every T of every plugin, sorted and unique.
 template <typename T>
 std::vector<std::string> ExtensionsOf(const std::vector<std::unique_ptr<LoadedPlugin>>& plugins,
@@ -41,7 +37,7 @@ std::vector<std::string> ExtensionsOf(const std::vector<std::unique_ptr<LoadedPl
   std::set<std::string> all;
   for (const auto& p : plugins) {
     for (const auto& item : (*p).*member) {
-      for (const std::string& e : item->Extensions()) all.insert(Lower(e));
+      for (const std::string& e : item->Extensions()) all.insert(AsciiLower(e));
     }
   }
   return {all.begin(), all.end()};
@@ -244,11 +240,11 @@ int Registry::BestSurveyScore(const std::string& path) const {
 }
 
 const ResultExporter* Registry::FindExporter(const std::string& target, const LoadedPlugin** owner) const {
-  const std::string ext = Lower(fs::path(target).extension().string());
+  const std::string ext = AsciiLower(fs::path(target).extension().string());
   for (const auto& p : plugins_) {
     for (const auto& e : p->result_exporters) {
       for (const std::string& x : e->Extensions()) {
-        if (Lower(x) != ext) continue;
+        if (AsciiLower(x) != ext) continue;
         if (owner) *owner = p.get();
         return e.get();
       }

@@ -7,17 +7,14 @@
 #include <filesystem>
 #include <regex>
 
+#include "base/file_io.h"
+
 namespace hull {
 namespace {
 namespace fs = std::filesystem;
 
 constexpr int kNamedDrops = 20;  // dropped frames listed one by one; the rest are counted
 const char kNamingRule[] = "expected <keyframe>_top.png or <keyframe>_bottom.png (or .jpg), the keyframe as in nav.csv";
-
-std::string Lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
 
 }  // namespace
 
@@ -58,7 +55,7 @@ SurveyImages ListSurveyImages(const std::string& bundle_dir, const SurveyManifes
   for (const std::string& name : names) {
     std::smatch m;
     if (!std::regex_match(name, m, pattern)) {
-      const std::string ext = Lower(fs::path(name).extension().string());
+      const std::string ext = AsciiLower(fs::path(name).extension().string());
       if (ext == ".png" || ext == ".jpg" || ext == ".jpeg") {
         error(name, std::string("not a valid image name: ") + kNamingRule);
       } else {
