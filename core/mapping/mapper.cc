@@ -53,7 +53,6 @@ struct Refined {
 // normals, SnapVerticesToFeatures) and the structures built over it.
 struct Snapped {
   TriangleMesh mesh;
-  int moved = 0;
   std::unique_ptr<PointConeTree> tree;
   std::unique_ptr<PointIndex> index;
 };
@@ -165,8 +164,8 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   if (o.fusion_along_normal && o.fusion_keep_peaks) {
     auto next = std::make_unique<Snapped>();
     next->mesh = refined->refined.mesh;
-    next->moved = SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, input.x_gM.Inverse(),
-                                         o.fusion_support, o.object_min_height, 0.6 * o.refine_edge);
+    SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, input.x_gM.Inverse(), o.fusion_support,
+                           o.object_min_height, 0.6 * o.refine_edge);
     next->tree = std::make_unique<PointConeTree>(next->mesh.vertices);
     next->index = std::make_unique<PointIndex>(next->mesh.vertices);
     snapped = std::move(next);

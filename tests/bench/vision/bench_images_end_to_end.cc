@@ -59,24 +59,22 @@ ObjectScore ScoreObjects(const PipelineInputs& in, const PipelineResult& r, cons
       m.model, m.objects, MappingInputFromAdjustment(r.adjustment, in.bundle), GaugeFitToTruth(in.bundle, r.adjustment),
       sim.bundle.truth->objects, sim.object_meshes, cad, &m.keyframes);
   std::printf("%s", ObjectHeightTable(checks, min_height, 0.01).c_str());
-  std::printf("objects of at least %.2f m: %s", min_height,
-              CountFoundObjects(checks, m.objects, min_height).ToString().c_str());
+  const FoundObjects found = CountFoundObjects(checks, m.objects, min_height);
+  std::printf("objects of at least %.2f m: %s", min_height, found.ToString().c_str());
   ObjectScore s;
-  std::set<std::string> true_ones;
+  s.required = found.required;
+  s.found = found.found;
+  s.false_objects = static_cast<int>(found.false_objects.size());
   for (const ObjectHeightCheck& c : checks) {
-    true_ones.insert(c.detected_as.begin(), c.detected_as.end());
-    if (c.height < min_height) continue;
-    ++s.required;
-    if (c.detected_as.empty()) continue;
-    ++s.found;
+    if (c.height < min_height || c.detected_as.empty()) continue;
     s.within_1cm += std::abs(c.error()) <= 0.01;
     s.worst_error = std::max(s.worst_error, std::abs(c.error()));
     if (c.kind == ObjectKind::kCylinder && std::isnan(s.cylinder_error)) s.cylinder_error = c.error();
     if (c.kind == ObjectKind::kBox && std::isnan(s.box_error)) s.box_error = c.error();
   }
+  const std::set<std::string> false_ids(found.false_objects.begin(), found.false_objects.end());
   for (const DetectedObject& d : m.objects) {
-    if (true_ones.count(d.id)) continue;
-    ++s.false_objects;
+    if (!false_ids.count(d.id)) continue;
     std::printf("    false object %s: max %.3f m, area %.4f m^2, %d features\n", d.id.c_str(), d.max_height, d.area,
                 d.num_features);
   }
