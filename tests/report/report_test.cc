@@ -213,6 +213,31 @@ TEST(ReportFigures, HeatmapShowsTheObjectsInRed) {
   EXPECT_GT(RedPixels(image), 200);
 }
 
+// A row of touching lumps along the keel, 20 units apart, labels 60 x 18:
+// every label inside the panel, none over another label or over an object.
+TEST(ReportFigures, LabelsOfARowOfObjectsDoNotOverlap) {
+  const Eigen::AlignedBox2d bounds(Eigen::Vector2d(0, 0), Eigen::Vector2d(800, 400));
+  std::vector<Eigen::Vector2d> anchors, sizes;
+  for (int i = 0; i < 10; ++i) {
+    anchors.emplace_back(200 + 20 * i, 200);
+    sizes.emplace_back(60, 18);
+  }
+  const std::vector<Eigen::AlignedBox2d> boxes = PlaceLabels(bounds, anchors, sizes);
+  ASSERT_EQ(boxes.size(), anchors.size());
+  // The first takes the preferred spot: right of and above its object.
+  EXPECT_DOUBLE_EQ(boxes[0].min().x(), 210);
+  EXPECT_DOUBLE_EQ(boxes[0].min().y(), 178);
+  for (std::size_t i = 0; i < boxes.size(); ++i) {
+    EXPECT_TRUE(bounds.contains(boxes[i])) << i;
+    EXPECT_DOUBLE_EQ(boxes[i].sizes().x(), 60);
+    for (std::size_t j = 0; j < i; ++j) EXPECT_TRUE(boxes[i].intersection(boxes[j]).isEmpty()) << i << " " << j;
+    for (const Eigen::Vector2d& a : anchors) EXPECT_FALSE(boxes[i].contains(a)) << i;
+  }
+  // Crowded beyond eight steps: still one box each, overlapping least.
+  const Eigen::AlignedBox2d small(Eigen::Vector2d(0, 0), Eigen::Vector2d(120, 60));
+  EXPECT_EQ(PlaceLabels(small, anchors, sizes).size(), anchors.size());
+}
+
 TEST(ReportFigures, CrossSectionHasEveryModelAndTheObject) {
   const DemoRun& run = Demo();
   const HullFrame hull = ReportHullFrame(run.full);

@@ -97,6 +97,48 @@ std::vector<ProjectedTriangle> ProjectMesh(const TriangleMesh& mesh, const ViewB
   return out;
 }
 
+std::vector<Eigen::AlignedBox2d> PlaceLabels(const Eigen::AlignedBox2d& bounds,
+                                             const std::vector<Eigen::Vector2d>& anchors,
+                                             const std::vector<Eigen::Vector2d>& sizes) {
+  constexpr double kGap = 10, kAbove = 22, kBelow = 8, kStep = 3, kAnchorMargin = 3, kAnchorCost = 50, kSpacing = 2;
+  constexpr int kRings = 8;
+  std::vector<Eigen::AlignedBox2d> placed;
+  placed.reserve(anchors.size());
+  for (std::size_t i = 0; i < anchors.size(); ++i) {
+    const Eigen::Vector2d& at = anchors[i];
+    const double w = sizes[i].x(), h = sizes[i].y();
+    Eigen::AlignedBox2d best;
+    double least = std::numeric_limits<double>::infinity();
+    for (int ring = 0; ring < kRings && least > 0; ++ring) {
+      const double up = -kAbove - ring * (h + kStep), down = kBelow + ring * (h + kStep);
+      for (const Eigen::Vector2d& off : {Eigen::Vector2d(kGap, up), Eigen::Vector2d(kGap, down),
+                                         Eigen::Vector2d(-kGap - w, up), Eigen::Vector2d(-kGap - w, down)}) {
+        const Eigen::AlignedBox2d box(at + off, at + off + Eigen::Vector2d(w, h));
+        double overlap = bounds.contains(box) ? 0.0 : 1e9;
+        for (const Eigen::AlignedBox2d& o : placed) {
+          // Labels keep kSpacing apart: touching boxes read as one.
+          const Eigen::AlignedBox2d both = Eigen::AlignedBox2d(o.min() - Eigen::Vector2d::Constant(kSpacing),
+                                                               o.max() + Eigen::Vector2d::Constant(kSpacing))
+                                               .intersection(box);
+          if (!both.isEmpty()) overlap += std::max(both.volume(), 1.0);
+        }
+        const Eigen::AlignedBox2d widened(box.min() - Eigen::Vector2d::Constant(kAnchorMargin),
+                                          box.max() + Eigen::Vector2d::Constant(kAnchorMargin));
+        for (const Eigen::Vector2d& a : anchors) {
+          if (widened.contains(a)) overlap += kAnchorCost;
+        }
+        if (overlap < least) {
+          least = overlap;
+          best = box;
+          if (least == 0) break;
+        }
+      }
+    }
+    placed.push_back(best);
+  }
+  return placed;
+}
+
 std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> pts) {
   // Andrew's monotone chain.
   std::sort(pts.begin(), pts.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {

@@ -62,6 +62,17 @@ std::vector<ProjectedTriangle> ProjectMesh(const TriangleMesh& mesh, const ViewB
 // The convex hull of points, counter-clockwise (fewer than three points: as given).
 std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points);
 
+// Boxes for labels beside anchors (2-D page units, y down): for each anchor
+// in order, the nearest free spot right or left of it, above or below,
+// stepping outwards by the label's height (a row of touching lumps along
+// the keel puts many labels side by side). A spot is free when it lies in
+// `bounds`, keeps 2 units from every label placed before it and covers no
+// anchor; with none free within eight steps, the spot that overlaps least.
+// sizes: each label's width and height.
+std::vector<Eigen::AlignedBox2d> PlaceLabels(const Eigen::AlignedBox2d& bounds,
+                                             const std::vector<Eigen::Vector2d>& anchors,
+                                             const std::vector<Eigen::Vector2d>& sizes);
+
 // The 2-D bounds of a mesh's projection.
 Eigen::AlignedBox2d ProjectedBounds(const TriangleMesh& mesh, const ViewBasis& view);
 

@@ -17,6 +17,7 @@
 #include "base/deviation_colours.h"
 #include "geometry/mesh_index.h"
 #include "mapping/vertex_significance.h"
+#include "ui/report/figure_geometry.h"
 #include "ui/report/figures.h"
 #include "ui/report/plot_painter.h"
 
@@ -365,19 +366,20 @@ class HeatmapFigure final : public Figure {
     p.setClipRect(panel.rect);
     p.setFont(FigureFont(10, true));
     const QFontMetricsF fm(p.font());
-    std::vector<QRectF> placed;
+    std::vector<Eigen::Vector2d> anchors, sizes;
     for (const Label& l : panel.labels) {
       const QPointF at = panel.ToRect(l.at);
-      const double w = fm.horizontalAdvance(l.text) + 6, h = fm.height() + 2;
-      // The first free spot of four around the object.
-      QRectF box;
-      for (const QPointF& off : {QPointF(10, -22), QPointF(10, 8), QPointF(-10 - w, -22), QPointF(-10 - w, 8)}) {
-        box = QRectF(at + off, QSizeF(w, h));
-        bool free = panel.rect.contains(box);
-        for (const QRectF& o : placed) free = free && !o.intersects(box);
-        if (free) break;
-      }
-      placed.push_back(box);
+      anchors.emplace_back(at.x(), at.y());
+      sizes.emplace_back(fm.horizontalAdvance(l.text) + 6, fm.height() + 2);
+    }
+    const Eigen::AlignedBox2d bounds(Eigen::Vector2d(panel.rect.left(), panel.rect.top()),
+                                     Eigen::Vector2d(panel.rect.right(), panel.rect.bottom()));
+    const std::vector<Eigen::AlignedBox2d> boxes = PlaceLabels(bounds, anchors, sizes);
+    for (std::size_t i = 0; i < panel.labels.size(); ++i) {
+      const Label& l = panel.labels[i];
+      const QPointF at = panel.ToRect(l.at);
+      const QRectF box(QPointF(boxes[i].min().x(), boxes[i].min().y()),
+                       QPointF(boxes[i].max().x(), boxes[i].max().y()));
       p.setPen(QPen(QColor(0x20, 0x20, 0x20), 0.8));
       p.drawLine(at, QPointF(box.center().x() < at.x() ? box.right() : box.left(), box.center().y()));
       p.setBrush(QColor(255, 255, 255, 215));
