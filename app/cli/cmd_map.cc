@@ -25,6 +25,9 @@ bundle and the mesh. Writes the mapping results (docs/results-format.md).
 options:
   --out DIR            output folder (default: RESULTS/mapping)
   --tau M              cluster features with |deviation| > M (default 0)
+  --grow-height M      hysteresis: clusters grow through features above M
+                       and are kept when they hold one above tau (default
+                       0.015; M >= tau: off, each feature cut at tau)
   --alpha M            alpha-shape radius (default 0.12)
   --eps M              DBSCAN neighbourhood radius (default 0.10)
   --min-points N       DBSCAN core-point count, the point included (default 3)
@@ -58,15 +61,16 @@ int RunMap(const CommandArgs& argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"out",          "tau",       "alpha",       "eps",           "min-points", "h-min",   "min-area",
-               "min-features", "min-views", "refine-edge", "fusion-radius", "fusion",     "support", "peak-band",
-               "stations",     "bundle",    "mesh",        "mesh-scale",    "threads",    "quiet"});
+  a.AllowOnly({"out",       "tau",          "grow-height", "alpha",       "eps",           "min-points", "h-min",
+               "min-area",  "min-features", "min-views",   "refine-edge", "fusion-radius", "fusion",     "support",
+               "peak-band", "stations",     "bundle",      "mesh",        "mesh-scale",    "threads",    "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
   const std::string results = a.positionals()[0];
   const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
   if (a.Has("out")) CheckOutputFolder(out);  // the default lies in the results folder, read first
   MappingOptions o;
   o.tau = a.GetDouble("tau", o.tau);
+  o.shape_grow_height = a.GetDouble("grow-height", o.shape_grow_height);
   o.alpha = a.GetDouble("alpha", o.alpha);
   o.dbscan_eps = a.GetDouble("eps", o.dbscan_eps);
   o.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.dbscan_min_points));

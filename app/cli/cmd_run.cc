@@ -26,7 +26,8 @@ options:
   --model NAME         max-mixture (default), all-on-surface or naive
   --sigma0 M --sigma1 M
   --compare-models     also run the two other surface models
-  --tau M --alpha M --eps M --min-points N   mapping (see 'map --help')
+  --tau M --grow-height M --alpha M --eps M --min-points N
+                       mapping (see 'map --help')
   --max-iterations N   --threads N
   --covariance M       landmark covariances and sigma of h: full (default),
                        conditional (poses held fixed; cheap) or none
@@ -41,8 +42,8 @@ int RunPipeline(const CommandArgs& argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"demo", "mesh", "mesh-scale", "model", "sigma0", "sigma1", "compare-models", "tau", "alpha", "eps",
-               "min-points", "max-iterations", "threads", "covariance", "quiet", "out"});
+  a.AllowOnly({"demo", "mesh", "mesh-scale", "model", "sigma0", "sigma1", "compare-models", "tau", "grow-height",
+               "alpha", "eps", "min-points", "max-iterations", "threads", "covariance", "quiet", "out"});
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
   CheckOutputFolder(out);
@@ -66,6 +67,7 @@ int RunPipeline(const CommandArgs& argv) {
   o.adjustment.covariance = ParseCovarianceMethod(a.Get("covariance", "full"));
   o.compare_models = a.Has("compare-models");
   o.mapping.tau = a.GetDouble("tau", o.mapping.tau);
+  o.mapping.shape_grow_height = a.GetDouble("grow-height", o.mapping.shape_grow_height);
   o.mapping.alpha = a.GetDouble("alpha", o.mapping.alpha);
   o.mapping.dbscan_eps = a.GetDouble("eps", o.mapping.dbscan_eps);
   o.mapping.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.mapping.dbscan_min_points));

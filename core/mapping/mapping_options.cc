@@ -21,6 +21,8 @@ void MappingOptions::Check() const {
   Require(Finite(alpha) && alpha > 0, "alpha", "must be a positive radius (m)");
   Require(Finite(dbscan_eps) && dbscan_eps > 0, "dbscan_eps", "must be positive (m)");
   Require(dbscan_min_points >= 1, "dbscan_min_points", "must be at least 1");
+  Require(Finite(shape_grow_height) && shape_grow_height >= 0, "shape_grow_height",
+          "must be >= 0 m (a value >= tau turns the hysteresis off)");
   Require(Finite(fusion_radius) && fusion_radius > 0, "fusion_radius", "must be positive (m)");
   Require(fusion_support >= 1 && fusion_support <= 100, "fusion_support", "must be between 1 and 100");
   Require(Finite(fusion_peak_band) && fusion_peak_band >= 0 && fusion_peak_band <= 0.1, "fusion_peak_band",

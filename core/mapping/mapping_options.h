@@ -21,6 +21,19 @@ struct MappingOptions {
   // ... and the number of points (the point itself included) within eps that
   // makes a core point.
   int dbscan_min_points = 3;
+  // Hysteresis (as in Canny's edge detector): with tau above it, features
+  // whose |deviation| exceeds this lower level are clustered too, and a
+  // cluster is kept only when it holds a feature above tau (a seed). tau
+  // then decides which clusters become shapes (those reaching above it)
+  // instead of cutting each shape down to its part above tau: a narrow lump
+  // whose top exceeds tau gets a shape over its footprint down to this
+  // level, while a cluster with no feature above tau still forms none. The
+  // level must stand above the hull's noise (the adjusted clean-hull
+  // features' 99th percentile is 1.2-1.5 cm), or clusters grow over the hull
+  // around an object (0 and 0.005 m made false objects or changes). A value
+  // >= tau turns it off (the paper's Algorithm 1, each feature cut at tau);
+  // at tau = 0 it has no effect. docs/mapping.md, "Algorithm 1".
+  double shape_grow_height = 0.015;
 
   // ---- Algorithm 2: fusion into the mesh -------------------------------------
   // Only model vertices within this distance of the top camera are fused

@@ -33,6 +33,7 @@ std::string JoinIds(const std::vector<std::int64_t>& ids) {
 Json OptionsJson(const MappingOptions& o) {
   Json j = Json::Object();
   j.Set("tau", o.tau);
+  j.Set("shape_grow_height", o.shape_grow_height);
   j.Set("alpha", o.alpha);
   j.Set("dbscan_eps", o.dbscan_eps);
   j.Set("dbscan_min_points", o.dbscan_min_points);

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 
@@ -49,15 +50,35 @@ void AdmitPeakPoints(const std::vector<Eigen::Vector3d>& points, double eps, Dbs
   }
 }
 
+void KeepSeededClusters(const std::vector<char>& seed, int min_seeds, DbscanResult& db) {
+  std::vector<int> seeds(static_cast<std::size_t>(db.num_clusters), 0);
+  for (std::size_t i = 0; i < db.labels.size(); ++i) {
+    if (db.labels[i] >= 0 && seed[i]) ++seeds[static_cast<std::size_t>(db.labels[i])];
+  }
+  std::vector<int> renumber(static_cast<std::size_t>(db.num_clusters), DbscanResult::kNoise);
+  int kept = 0;
+  for (std::size_t c = 0; c < seeds.size(); ++c) {
+    if (seeds[c] >= min_seeds) renumber[c] = kept++;
+  }
+  for (int& label : db.labels) {
+    if (label >= 0) label = renumber[static_cast<std::size_t>(label)];
+  }
+  db.num_clusters = kept;
+}
+
 KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o) {
   const MappingKeyframe& kf = input.keyframes[static_cast<std::size_t>(keyframe)];
   KeyframeShapes out;
   out.keyframe = keyframe;
   out.id = kf.id;
   const Pose cT_g = kf.x_g_cT.Inverse();
-  // Lines 4-10: the points to cluster, (x, y, |d|).
+  // Lines 4-10: the points to cluster, (x, y, |d|): those above tau (the
+  // seeds) and, with hysteresis (shape_grow_height < tau), those above the
+  // lower level that a cluster may grow through.
+  const double low = std::min(o.tau, o.shape_grow_height);
   std::vector<Eigen::Vector3d> cluster_points;
   std::vector<int> cluster_point_of;  // -> out.points
+  std::vector<char> seed;             // per cluster point: |d| > tau
   for (const int li : kf.landmarks) {
     const MappingLandmark& l = input.landmarks[static_cast<std::size_t>(li)];
     ShapePoint p;
@@ -66,20 +87,23 @@ KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const Mappi
     if (p.p_c.z() < kMinDepth) continue;
     p.pixel = input.camera.top.Project(p.p_c);
     p.deviation = l.deviation;
-    if (std::abs(l.deviation) > o.tau) {
-      p.cluster = ShapePoint::kNoise;
+    if (std::abs(l.deviation) > low) {
       cluster_points.emplace_back(p.p_c.x(), p.p_c.y(), std::abs(l.deviation));
       cluster_point_of.push_back(static_cast<int>(out.points.size()));
+      seed.push_back(std::abs(l.deviation) > o.tau);
     }
     out.points.push_back(p);
   }
   // Line 11: DBSCAN.
   DbscanResult db = Dbscan(cluster_points, o.dbscan_eps, o.dbscan_min_points);
   if (o.fusion_keep_peaks) AdmitPeakPoints(cluster_points, o.dbscan_eps, db);
+  if (low < o.tau) KeepSeededClusters(seed, 1, db);
   std::vector<std::vector<int>> members(static_cast<std::size_t>(db.num_clusters));
   for (std::size_t i = 0; i < db.labels.size(); ++i) {
     const int c = db.labels[i];
-    out.points[static_cast<std::size_t>(cluster_point_of[i])].cluster = c;
+    ShapePoint& p = out.points[static_cast<std::size_t>(cluster_point_of[i])];
+    // A point below tau that no kept cluster grew through is not clustered.
+    p.cluster = c >= 0 || seed[i] ? c : ShapePoint::kBelowTau;
     if (c >= 0) members[static_cast<std::size_t>(c)].push_back(cluster_point_of[i]);
   }
   // Lines 12-15: an alpha shape per cluster over camera (x, y), lifted by z.

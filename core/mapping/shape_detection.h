@@ -1,7 +1,9 @@
 // Algorithm 1 of Ozog et al.: the shapes of foreign structure seen at one
 // keyframe. The landmarks the keyframe observed whose |deviation| exceeds
 // tau become points (x, y, |d|), x and y in the top-camera frame; DBSCAN
-// clusters them; each cluster is meshed as a 2-D alpha shape over camera
+// clusters them (with hysteresis, MappingOptions::shape_grow_height, the
+// points above a lower level join too, and only clusters holding seeds
+// above tau are kept); each cluster is meshed as a 2-D alpha shape over camera
 // (x, y) and lifted to 2.5-D by each vertex's camera z. The results keep
 // everything the GUI's keyframe view draws (the paper's Fig. 11): every
 // observed feature with its pixel, deviation and cluster, and each shape in
@@ -21,8 +23,10 @@ namespace hull {
 
 // One landmark observed at the keyframe.
 struct ShapePoint {
-  static constexpr int kBelowTau = -2;  // |deviation| <= tau: not clustered
-  static constexpr int kNoise = -1;     // clustered, but DBSCAN found it isolated
+  // |deviation| <= tau and in no cluster (with hysteresis, a point between
+  // shape_grow_height and tau that no kept cluster grew through): not clustered
+  static constexpr int kBelowTau = -2;
+  static constexpr int kNoise = -1;  // clustered, but DBSCAN found it isolated
 
   int landmark = 0;                                 // index into MappingInput::landmarks
   Eigen::Vector3d p_c = Eigen::Vector3d::Zero();    // in the top-camera frame (x right, y down, z forward)
@@ -59,6 +63,11 @@ struct KeyframeShapes {
 // plane (x, y) has a lower |d|) joins the cluster of the nearest such
 // point. Labels of clustered points do not change.
 void AdmitPeakPoints(const std::vector<Eigen::Vector3d>& points, double eps, DbscanResult& db);
+
+// Hysteresis (MappingOptions::shape_grow_height): clusters holding fewer
+// than min_seeds seeds (seed[i]: point i stands above tau) are dropped (their
+// points become noise); the rest are renumbered 0 .. in their order.
+void KeepSeededClusters(const std::vector<char>& seed, int min_seeds, DbscanResult& db);
 
 // Algorithm 1 for one keyframe (index into input.keyframes). options.Check()
 // is the caller's business.

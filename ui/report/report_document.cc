@@ -249,6 +249,10 @@ Section MethodSection(const ReportInputs& in) {
   if (in.mapping) {
     const MappingOptions& m = in.mapping->options;
     row("τ", Metres(m.tau), "features with |deviation| > τ are clustered");
+    if (m.shape_grow_height < m.tau) {
+      row("Clusters grown above", Metres(m.shape_grow_height),
+          "hysteresis: clusters grow through features above this and are kept when one exceeds τ");
+    }
     row("α", Metres(m.alpha), "alpha-shape radius");
     row("ε", Metres(m.dbscan_eps), "DBSCAN neighbourhood radius");
     row("Min points", std::to_string(m.dbscan_min_points), "DBSCAN core-point count");

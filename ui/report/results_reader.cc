@@ -76,6 +76,8 @@ MappingResult ReadMapping(const fs::path& dir, const TriangleMesh& cad, const Ad
     root.Fail(root.Required("format"), "format", "expected \"hull-mapping\"");
   const JsonReader o = root.Object("options");
   m.options.tau = o.Number("tau");
+  // Absent from results written before the hysteresis: each feature was cut at tau.
+  m.options.shape_grow_height = o.NumberOr("shape_grow_height", m.options.tau);
   m.options.alpha = o.Number("alpha");
   m.options.dbscan_eps = o.Number("dbscan_eps");
   m.options.dbscan_min_points = static_cast<int>(o.Integer("dbscan_min_points"));

@@ -182,6 +182,11 @@ ParameterTable MakeTable() {
                    m.tau, 3, 0.01, QStringLiteral("m"),
                    QStringLiteral("Features whose |deviation| exceeds τ are clustered into shapes. 0 gives the "
                                   "most detail; 0.06 m fewer false positives.")));
+  t.push_back(Real(QStringLiteral("shape_grow_height"), kMap, Stage::kMapping, QStringLiteral("Grow clusters above"),
+                   0.0, 1.0, m.shape_grow_height, 3, 0.005, QStringLiteral("m"),
+                   QStringLiteral("Hysteresis: a cluster grows through features standing above this and is kept "
+                                  "when one of them exceeds τ, so a narrow lump whose top exceeds τ is shaped over "
+                                  "its whole footprint. At or above τ: off (each feature cut at τ).")));
   t.push_back(Real(QStringLiteral("alpha"), kMap, Stage::kMapping, QStringLiteral("α (alpha shapes)"), 0.005, 2.0,
                    m.alpha, 3, 0.01, QStringLiteral("m"),
                    QStringLiteral("Radius of the alpha shapes meshed over each cluster: larger values bridge wider "
@@ -350,6 +355,7 @@ AdjustmentOptions AdjustmentOptionsFrom(const ParameterValues& values) {
 MappingOptions MappingOptionsFrom(const ParameterValues& values) {
   MappingOptions o;
   o.tau = values.value(QStringLiteral("tau"), o.tau).toDouble();
+  o.shape_grow_height = values.value(QStringLiteral("shape_grow_height"), o.shape_grow_height).toDouble();
   o.alpha = values.value(QStringLiteral("alpha"), o.alpha).toDouble();
   o.dbscan_eps = values.value(QStringLiteral("dbscan_eps"), o.dbscan_eps).toDouble();
   o.dbscan_min_points = values.value(QStringLiteral("dbscan_min_points"), o.dbscan_min_points).toInt();

@@ -1,6 +1,9 @@
 // bench_mapping: how long model-assisted mapping takes.
 //
-//   bench_mapping [--threads N] [--skip-curtiss] [--skip-demo]
+//   bench_mapping [--threads N] [--skip-curtiss] [--skip-demo] [--grow-height M]
+//
+// --grow-height M sets MappingOptions::shape_grow_height (Algorithm 1's
+// hysteresis; M >= tau turns it off) for every run.
 //
 // demo:    the stereo demo survey, simulated and adjusted (max-mixture), then
 //          mapped by one Mapper as the GUI keeps it: the first run (shapes,
@@ -51,8 +54,11 @@ void Header() {
               std::string(36, '-').c_str());
 }
 
+double grow_height = -1;  // --grow-height; < 0: MappingOptions' default
+
 hull::MappingOptions With(double tau, double alpha, double eps = 0.10) {
   hull::MappingOptions o;
+  if (grow_height >= 0) o.shape_grow_height = grow_height;
   o.tau = tau;
   o.alpha = alpha;
   o.dbscan_eps = eps;
@@ -155,12 +161,14 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--threads") && i + 1 < argc) {
       threads = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--grow-height") && i + 1 < argc) {
+      grow_height = std::atof(argv[++i]);
     } else if (!std::strcmp(argv[i], "--skip-curtiss")) {
       curtiss = false;
     } else if (!std::strcmp(argv[i], "--skip-demo")) {
       demo = false;
     } else {
-      std::fprintf(stderr, "usage: bench_mapping [--threads N] [--skip-demo] [--skip-curtiss]\n");
+      std::fprintf(stderr, "usage: bench_mapping [--threads N] [--skip-demo] [--skip-curtiss] [--grow-height M]\n");
       return 2;
     }
   }

@@ -1,7 +1,8 @@
 // Object heights and survey change end to end (issue 12, parts 1 and 4;
 // docs/benchmarks.md, "Peaks per true object"):
 //   bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]
-//               [--fusion normal|peaks|mean] [--min-features N] [--tau M]
+//               [--fusion normal|peaks|mean] [--min-features N] [--tau M] [--grow-height M]
+//
 // The preset is simulated and written as a bundle (as `hullinspect-cli
 // simulate` writes it), read back and run through the whole pipeline with
 // its default options (as `hullinspect-cli run`: alignment, max-mixture
@@ -10,7 +11,9 @@
 // (mapping/object_height_check.h), and the objects >= 6 cm found and the
 // detected objects on no true object (false). --min-features N sets
 // MappingOptions::object_min_features (0: the area test alone), --tau M the
-// mapping's tau (default: MappingOptions', 0). With --pair, the preset's second survey
+// mapping's tau (default: MappingOptions', 0), --grow-height M the level
+// Algorithm 1's hysteresis grows clusters down to
+// (MappingOptions::shape_grow_height; a height >= tau turns it off). With --pair, the preset's second survey
 // (2 patches grown by 5 cm, the last object removed, 2 new) too, and
 // CompareSurveys (as `hullinspect-cli compare`) judged against the truth:
 // every new, removed and >= 3 cm grown object reported, none false, the
@@ -117,7 +120,7 @@ void Explain(const std::vector<hull::ObjectHeightCheck>& checks, const std::stri
 // `reuse` and both there, the adjustment is read back and only the mapping
 // runs (as `hullinspect-cli map` would on it).
 Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, const fs::path& dir, int threads,
-              bool reuse, const std::string& explain, const std::string& fusion, int min_features, double tau) {
+              bool reuse, const std::string& explain, const hull::MappingOptions& mapping) {
   hull::NullProgress p;
   Survey s;
   s.sim = hull::SimulateSurvey(so, p);
@@ -127,11 +130,8 @@ Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, 
   const hull::PipelineInputs in = hull::LoadPipelineInputs(bundle);
   hull::PipelineOptions o;
   o.adjustment.num_threads = threads;
+  o.mapping = mapping;
   o.mapping.num_threads = threads;
-  o.mapping.fusion_keep_peaks = fusion != "mean";
-  o.mapping.fusion_along_normal = fusion == "normal";
-  if (min_features >= 0) o.mapping.object_min_features = min_features;
-  if (tau >= 0) o.mapping.tau = tau;
   const auto t = Clock::now();
   if (reuse) {
     s.adjustment = hull::ReadAdjustmentResult(adjustment);
@@ -272,7 +272,7 @@ void ComparePair(const Survey& a, const Survey& b) {
 
 int main(int argc, char** argv) {
   int threads = 0, min_features = -1;
-  double tau = -1;
+  double tau = -1, grow_height = -1;
   bool pair = false, reuse = false;
   std::string explain;
   std::string preset = "demo", keep, fusion = "normal";
@@ -287,6 +287,8 @@ int main(int argc, char** argv) {
       explain = argv[++i];
     } else if (!std::strcmp(argv[i], "--min-features") && i + 1 < argc) {
       min_features = std::atoi(argv[++i]);
+    } else if (!std::strcmp(argv[i], "--grow-height") && i + 1 < argc) {
+      grow_height = std::atof(argv[++i]);
     } else if (!std::strcmp(argv[i], "--tau") && i + 1 < argc) {
       tau = std::atof(argv[++i]);
     } else if (!std::strcmp(argv[i], "--fusion") && i + 1 < argc &&
@@ -301,22 +303,28 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT] "
-          "[--fusion normal|peaks|mean] [--min-features N] [--tau M]\n");
+          "[--fusion normal|peaks|mean] [--min-features N] [--tau M] [--grow-height M]\n");
       return 2;
     }
   }
   const fs::path dir =
       keep.empty() ? fs::temp_directory_path() / ("bench_peaks-" + std::to_string(::getpid())) : fs::path(keep);
   fs::create_directories(dir);
+  hull::MappingOptions mapping;
+  mapping.fusion_keep_peaks = fusion != "mean";
+  mapping.fusion_along_normal = fusion == "normal";
+  if (min_features >= 0) mapping.object_min_features = min_features;
+  if (tau >= 0) mapping.tau = tau;
+  if (grow_height >= 0) mapping.shape_grow_height = grow_height;
   const hull::SurveySimulationOptions oa = hull::SurveyPreset(preset);
-  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, fusion, min_features, tau);
+  const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, mapping);
   if (pair) {
     hull::SurveySimulationOptions ob = oa;
     ob.changes.grow = 2;
     ob.changes.remove = 1;
     ob.changes.add = 2;
-    const Survey b = RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain,
-                            fusion, min_features, tau);
+    const Survey b =
+        RunOne(preset + " (B: --grow 2 --remove 1 --add 2)", ob, dir / "b", threads, reuse, explain, mapping);
     ComparePair(a, b);
   }
   if (keep.empty()) fs::remove_all(dir);

@@ -13,12 +13,15 @@
 // may sit centimetres to decimetres from the truth in M with no object wrong.
 //
 //   bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N]
-//                           [--tau M] [--threads N] [--min-features N] [--keep DIR [--reuse]]
+//                           [--tau M] [--threads N] [--min-features N] [--grow-height M]
+//                           [--keep DIR [--reuse]]
 // --keep DIR keeps both bundles (DIR/given, DIR/images; the front end's
 // features.csv and match-graph.csv written into DIR/images); --reuse then
 // starts from them (no rendering, no front end) to score other options.
 // --min-features N sets MappingOptions::object_min_features (0: the area
-// test alone, the detection before small supported objects were kept).
+// test alone, the detection before small supported objects were kept);
+// --grow-height M the level Algorithm 1's hysteresis grows clusters down
+// to (MappingOptions::shape_grow_height; a height >= tau turns it off).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,6 +31,8 @@
 #include <string>
 #include <vector>
 
+#include "adjust/adjust_result.h"
+#include "adjust/evaluation.h"
 #include "base/progress.h"
 #include "mapping/mapping_input.h"
 #include "mapping/object_height_check.h"
@@ -90,7 +95,7 @@ struct RunFigures {
 };
 
 RunFigures RunOne(const std::string& bundle_dir, const PipelineOptions& o, const SimulatedSurvey& sim,
-                  double min_height, const char* label) {
+                  double min_height, const char* label, bool reuse) {
   std::printf("\n== %s (%s)\n", label, bundle_dir.c_str());
   RunFigures f;
   NullProgress quiet;
@@ -104,7 +109,17 @@ RunFigures RunOne(const std::string& bundle_dir, const PipelineOptions& o, const
   }
   f.tracks = in.image_tracks;
   if (f.tracks) std::printf("%s", f.tracks->ToString().c_str());
-  const PipelineResult r = RunPipeline(in, o, quiet);
+  const std::string adjustment = bundle_dir + "-adjustment";
+  PipelineResult r;
+  if (reuse && fs::exists(adjustment)) {
+    std::printf("adjustment reused from %s: mapping only\n", adjustment.c_str());
+    r.adjustment = ReadAdjustmentResult(adjustment);
+    if (in.bundle.truth) r.evaluation = EvaluateAdjustment(in.bundle, in.mesh, r.adjustment);
+    r.mapping = RunMappingStep(in, r.adjustment, o.mapping, quiet);
+  } else {
+    r = RunPipeline(in, o, quiet);
+    WriteAdjustmentResult(r.adjustment, adjustment);
+  }
   f.seconds = Now() - t0;
   f.landmarks = r.adjustment.landmarks.size();
   if (!r.evaluation) {
@@ -125,6 +140,7 @@ int main(int argc, char** argv) {
   bool reuse = false;
   double camera_scale = 0.5, tau = 0.06, min_height = 0.06;
   int seed = 1, threads = 2, min_features = -1;
+  double grow_height = -1;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -148,12 +164,14 @@ int main(int argc, char** argv) {
       min_features = std::atoi(value().c_str());
     } else if (a == "--keep") {
       keep = value();
+    } else if (a == "--grow-height") {
+      grow_height = std::atof(value().c_str());
     } else if (a == "--reuse") {
       reuse = true;
     } else {
       std::fprintf(stderr,
                    "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
-                   "[--threads N] [--min-features N] [--keep DIR [--reuse]]\n");
+                   "[--threads N] [--min-features N] [--grow-height M] [--keep DIR [--reuse]]\n");
       return 2;
     }
   }
@@ -190,8 +208,9 @@ int main(int argc, char** argv) {
   o.adjustment.covariance = CovarianceMethod::kNone;  // not what is scored here, and slow on ~10^5 landmarks
   o.mapping.tau = tau;
   if (min_features >= 0) o.mapping.object_min_features = min_features;
-  const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks");
-  const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)");
+  if (grow_height >= 0) o.mapping.shape_grow_height = grow_height;
+  const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse);
+  const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse);
 
   auto row = [](const char* what, const RunFigures& f) {
     std::printf("| %s | %zu | %.2f %% | %.4f m | %.4f m | %d of %d | %d | %d | %+.3f m | %+.3f m | %.3f m | %.0f s |\n",

@@ -1,6 +1,6 @@
 // Unit tests of the mapping building blocks on data with known answers:
-// options, DBSCAN against a brute-force DBSCAN, alpha shapes of known point
-// sets, rays against shapes, the moving average of eq. 15, hull zones and
+// options, DBSCAN against a brute-force DBSCAN, Algorithm 1's hysteresis,
+// alpha shapes of known point sets, rays against shapes, the moving average of eq. 15, hull zones and
 // ratings, exact clipping and refinement regions.
 #include <gtest/gtest.h>
 
@@ -17,6 +17,7 @@
 #include "mapping/mapping_options.h"
 #include "mapping/point_cone_tree.h"
 #include "mapping/refinement_region.h"
+#include "mapping/shape_detection.h"
 #include "mapping/shape_fusion.h"
 #include "mapping/shape_raycast.h"
 #include "mapping/surface_clip.h"
@@ -35,6 +36,7 @@ TEST(MappingOptions, DefaultsPassAndEachBadFieldIsNamed) {
     void (*spoil)(MappingOptions&);
   } cases[] = {
       {"tau", [](MappingOptions& o) { o.tau = -0.01; }},
+      {"shape_grow_height", [](MappingOptions& o) { o.shape_grow_height = -0.01; }},
       {"alpha", [](MappingOptions& o) { o.alpha = 0; }},
       {"dbscan_eps", [](MappingOptions& o) { o.dbscan_eps = -1; }},
       {"dbscan_min_points", [](MappingOptions& o) { o.dbscan_min_points = 0; }},
@@ -141,6 +143,80 @@ TEST(Dbscan, KnownCases) {
   EXPECT_EQ(Dbscan(row, 0.1, 4).num_clusters, 0);
   // min_points 1: every point is its own core.
   EXPECT_EQ(Dbscan(row, 0.01, 1).num_clusters, 4);
+}
+
+// ---- Algorithm 1's hysteresis ---------------------------------------------------
+
+TEST(ShapeDetection, KeepSeededClustersDropsClustersWithoutASeed) {
+  DbscanResult db;
+  db.labels = {0, 0, 1, 1, 2, DbscanResult::kNoise};
+  db.num_clusters = 3;
+  KeepSeededClusters({0, 1, 0, 0, 1, 1}, 1, db);
+  EXPECT_EQ(db.num_clusters, 2);
+  EXPECT_EQ(db.labels, (std::vector<int>{0, 0, DbscanResult::kNoise, DbscanResult::kNoise, 1, DbscanResult::kNoise}));
+}
+
+// One keyframe's camera (at the origin of g, looking along +z) over a grid
+// of features 1 m away, 3 cm apart: a narrow lump 0.10 m high (Gaussian,
+// sigma 3.5 cm; above tau = 0.06 m over its five middle features) and a low
+// one 0.05 m high (sigma 5 cm; nothing above tau), 0.6 m apart; the rest
+// lies on the CAD surface (deviation 0).
+MappingInput TwoLumps() {
+  MappingInput in;
+  MappingKeyframe kf;
+  kf.id = 1;
+  for (int j = -20; j <= 20; ++j) {
+    for (int i = -20; i <= 20; ++i) {
+      const Eigen::Vector2d xy(0.03 * i, 0.03 * j);
+      const double r1 = (xy - Eigen::Vector2d(-0.3, 0)).squaredNorm(),
+                   r2 = (xy - Eigen::Vector2d(0.3, 0)).squaredNorm();
+      double d = 0.10 * std::exp(-r1 / (2 * 0.035 * 0.035)) + 0.05 * std::exp(-r2 / (2 * 0.05 * 0.05));
+      if (d < 0.002) d = 0;
+      MappingLandmark l;
+      l.id = static_cast<std::int64_t>(in.landmarks.size());
+      l.p_g = Eigen::Vector3d(xy.x(), xy.y(), 1.0 - d);
+      l.deviation = d;
+      kf.landmarks.push_back(static_cast<int>(in.landmarks.size()));
+      in.landmarks.push_back(l);
+    }
+  }
+  in.keyframes.push_back(kf);
+  return in;
+}
+
+TEST(ShapeDetection, HysteresisShapesANarrowLumpOverItsFootprintAndALowOneNot) {
+  const MappingInput in = TwoLumps();
+  MappingOptions off;
+  off.tau = 0.06;
+  off.shape_grow_height = off.tau;  // the paper's Algorithm 1: each feature cut at tau
+  MappingOptions on = off;
+  on.shape_grow_height = MappingOptions().shape_grow_height;  // the default, 1.5 cm
+  ASSERT_LT(on.shape_grow_height, on.tau);
+  const KeyframeShapes cut = DetectShapes(in, 0, off), grown = DetectShapes(in, 0, on);
+  ASSERT_EQ(cut.shapes.size(), 1u);
+  ASSERT_EQ(grown.shapes.size(), 1u);
+  // Cut at tau, the narrow lump's shape is its top: every vertex above tau.
+  for (const double d : cut.shapes[0].deviation) EXPECT_GT(d, off.tau);
+  // Grown, it spans the lump's flanks down to the level: vertices below 2
+  // cm, none below the level, 4 times the area and more, all on the narrow
+  // lump.
+  const DetectedShape& s = grown.shapes[0];
+  EXPECT_LT(*std::min_element(s.deviation.begin(), s.deviation.end()), 0.02);
+  EXPECT_GT(*std::min_element(s.deviation.begin(), s.deviation.end()), on.shape_grow_height);
+  EXPECT_GT(s.area, 4 * cut.shapes[0].area);
+  for (const Eigen::Vector3d& v : s.vertices_g) EXPECT_LT((v.head<2>() - Eigen::Vector2d(-0.3, 0)).norm(), 0.1);
+  // The low lump has no feature above tau: no shape, and its features are
+  // not clustered (kBelowTau), as without the hysteresis.
+  for (const ShapePoint& p : grown.points) {
+    const Eigen::Vector2d xy = in.landmarks[static_cast<std::size_t>(p.landmark)].p_g.head<2>();
+    if ((xy - Eigen::Vector2d(0.3, 0)).norm() < 0.2) {
+      EXPECT_EQ(p.cluster, ShapePoint::kBelowTau);
+    }
+  }
+  // At tau = 0 the level has no effect: both lumps are shaped either way.
+  off.tau = on.tau = 0;
+  EXPECT_EQ(DetectShapes(in, 0, off).shapes.size(), 2u);
+  EXPECT_EQ(DetectShapes(in, 0, on).shapes.size(), 2u);
 }
 
 // ---- alpha shapes -----------------------------------------------------------------
