@@ -27,26 +27,18 @@ using mosaic_internal::Candidate;
 using mosaic_internal::Chart;
 using mosaic_internal::ChooseViews;
 using mosaic_internal::FaceNeighbours;
+using mosaic_internal::FaceSamples;
 using mosaic_internal::FeatherWeights;
 using mosaic_internal::FlatChart;
 using mosaic_internal::kSamples;
 using mosaic_internal::PackShelves;
 using mosaic_internal::Sample;
+using mosaic_internal::SeenFaces;
 using mosaic_internal::SplitLongEdges;
 using mosaic_internal::ViewWeights;
 
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// The centroid and three points toward the corners (85 % of the way): a face
-// counts as seen only when all four are.
-std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f) {
-  const Face& F = m.faces[static_cast<std::size_t>(f)];
-  const Eigen::Vector3d a = m.vertices[static_cast<std::size_t>(F[0])], b = m.vertices[static_cast<std::size_t>(F[1])],
-                        c = m.vertices[static_cast<std::size_t>(F[2])];
-  const Eigen::Vector3d g = (a + b + c) / 3.0;
-  return {g, g + 0.85 * (a - g), g + 0.85 * (b - g), g + 0.85 * (c - g)};
-}
 
 // Nearest-rank percentile (q in [0, 1]) of a non-empty sample.
 double Percentile(std::vector<double> v, double q) {
@@ -135,43 +127,9 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
   // ---- Candidates: visible, unoccluded, in the image, near and frontal enough.
   progress.Update(0.0, "visibility of " + std::to_string(nf) + " faces in " + std::to_string(nviews) + " images");
   const auto t_vis = Clock::now();
-  const double cos_max = std::cos(options.max_incidence_deg * M_PI / 180.0);
-  const double margin = options.image_margin;
-  std::vector<std::vector<std::pair<int, float>>> seen(static_cast<std::size_t>(nviews));  // view -> (face, score)
-  arena.execute([&] {
-    tbb::parallel_for(0, nviews, [&](int vi) {
-      if (progress.Cancelled()) return;
-      const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
-      const Eigen::Vector3d o = cam.centre();
-      std::vector<std::pair<int, float>> pass;
-      std::vector<Eigen::Vector3d> points;
-      for (std::size_t f = 0; f < nf; ++f) {
-        const Eigen::Vector3d g = model.FaceCentroid(static_cast<int>(f));
-        const Eigen::Vector3d to = o - g;
-        const double d = to.norm();
-        if (!(d > 1e-6 && d <= options.max_range)) continue;
-        const double cosi = model.face_normals[f].dot(to) / d;
-        if (cosi < cos_max) continue;
-        bool in_image = true;
-        for (int i = 0; i < 3 && in_image; ++i) {
-          Eigen::Vector2d uv;
-          in_image = cam.Project(model.vertices[static_cast<std::size_t>(model.faces[f][i])], &uv) &&
-                     uv.x() >= margin && uv.y() >= margin && uv.x() <= W - 1 - margin && uv.y() <= H - 1 - margin;
-        }
-        if (!in_image) continue;
-        pass.emplace_back(static_cast<int>(f), static_cast<float>(cosi / (d * d)));
-        for (const Eigen::Vector3d& p : FaceSamples(model, static_cast<int>(f))) points.push_back(p);
-      }
-      std::unique_ptr<bool[]> blocked(new bool[points.size() + 1]);
-      index.OccludedToward(points.data(), static_cast<int>(points.size()), o, 1e-3, blocked.get());
-      auto& out = seen[static_cast<std::size_t>(vi)];
-      for (std::size_t i = 0; i < pass.size(); ++i) {
-        bool free = true;
-        for (int s = 0; s < kSamples; ++s) free = free && !blocked[i * kSamples + static_cast<std::size_t>(s)];
-        if (free) out.push_back(pass[i]);
-      }
-    });
-  });
+  mosaic_internal::Visibility vis;
+  arena.execute([&] { vis = SeenFaces(model, index, cameras, W, H, options, progress); });
+  std::vector<std::vector<std::pair<int, float>>>& seen = vis.seen;  // view -> (face, score)
   progress.ThrowIfCancelled();
   std::vector<std::vector<Candidate>> cand(nf);
   for (int vi = 0; vi < nviews; ++vi) {
@@ -180,6 +138,9 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
       cand[static_cast<std::size_t>(f)].push_back({vi, s, 0});
   }
   seen.clear();
+  R.summary.visibility_pairs_near = vis.near;
+  R.summary.visibility_pairs_projected = vis.projected;
+  R.summary.visibility_rays = vis.rays;
   R.summary.seconds.visibility = Since(t_vis);
 
   // ---- Labelling: best view, then Potts smoothing by iterated conditional modes.

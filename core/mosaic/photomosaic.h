@@ -98,6 +98,9 @@ struct MosaicSummary {
   double gain_min = 1, gain_median = 1, gain_max = 1;
   std::size_t faces_scored = 0;
   double error_median = 0, error_p95 = 0, mean_error_median = 0, mean_error_p95 = 0;
+  // The visibility stage's work: (view, face) pairs the centroid grid
+  // returned, pairs whose corners were projected, rays cast.
+  std::size_t visibility_pairs_near = 0, visibility_pairs_projected = 0, visibility_rays = 0;
   struct Seconds {
     double visibility = 0, labelling = 0, gains = 0, texturing = 0, scoring = 0, total = 0;
   } seconds;
