@@ -65,6 +65,8 @@ struct MosaicInput {
   TriangleMesh model;                   // the remeshed model in M
   // Whether keyframe index k has an image of the top (bottom) camera, and
   // reading it (8/16-bit, 1 or 3 channels; throws InputError naming the file).
+  // read_image is called from several threads at once (a chunk of views is
+  // read in parallel).
   std::function<bool(std::size_t k, bool bottom)> has_image;
   std::function<cv::Mat(std::size_t k, bool bottom)> read_image;
 };
@@ -126,7 +128,7 @@ struct MosaicResult {
 };
 
 // Builds the mosaic; `truth` (optional) scores it. Progress and
-// cancellation (throws Cancelled) between views.
+// cancellation (throws Cancelled) between chunks of 64 views.
 MosaicResult BuildMosaic(const MosaicInput& input, const MosaicOptions& options, Progress& progress,
                          const TrueScene* truth = nullptr);
 
