@@ -122,7 +122,6 @@ Visibility SeenFaces(const TriangleMesh& model, const MeshIndex& index, const st
     const PinholeIntrinsics& k = cam.intrinsics();
     std::vector<int> faces;
     grid.Near(o, options.max_range, &faces);
-    std::sort(faces.begin(), faces.end());  // the rays and the list in face order
     std::vector<std::pair<int, float>> pass;
     std::vector<Eigen::Vector3d> points;
     std::size_t tested = 0;
@@ -155,7 +154,10 @@ Visibility SeenFaces(const TriangleMesh& model, const MeshIndex& index, const st
       }
       if (!in_image) continue;
       pass.emplace_back(fi, static_cast<float>(cosi / (d * d)));
-      for (const Eigen::Vector3d& p : FaceSamples(model, fi)) points.push_back(p);
+    }
+    std::sort(pass.begin(), pass.end());  // the list (and the rays) in face order
+    for (const auto& fs : pass) {
+      for (const Eigen::Vector3d& p : FaceSamples(model, fs.first)) points.push_back(p);
     }
     std::unique_ptr<bool[]> blocked(new bool[points.size() + 1]);
     index.OccludedToward(points.data(), static_cast<int>(points.size()), o, 1e-3, blocked.get());

@@ -113,10 +113,13 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
     if (stereo) photo_bottom = MakeSurveyCamera(in.manifest, options.photometry, true);
   }
   // Normalised value of a pixel sample: albedo estimate (model) or the raw share of full scale.
-  auto normalise = [&](const MosaicCamera& cam, const Eigen::Vector3d& p_c, const Eigen::Vector3d& n_M,
-                       const Eigen::Vector2d& uv, float* px, int ch) {
+  // Each view's x_Mc rotation as a matrix, made once (not per sample).
+  std::vector<Eigen::Matrix3d> rotation(cameras.size());
+  for (std::size_t vi = 0; vi < cameras.size(); ++vi) rotation[vi] = cameras[vi].x_Mc().rotation();
+  auto normalise = [&](const MosaicCamera& cam, const Eigen::Matrix3d& rot, const Eigen::Vector3d& p_c,
+                       const Eigen::Vector3d& n_M, const Eigen::Vector2d& uv, float* px, int ch) {
     if (!use_model) return;
-    Eigen::Vector3d n_c = cam.x_Mc().rotation().transpose() * n_M;
+    Eigen::Vector3d n_c = rot.transpose() * n_M;
     if (n_c.dot(p_c) > 0) n_c = -n_c;  // the side facing the camera
     const UnderwaterCamera& u = cam.bottom() ? *photo_bottom : *photo_top;
     const UnderwaterCamera::Response r = u.ResponseAt(p_c, n_c, uv.x(), uv.y());
@@ -328,7 +331,8 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
               Eigen::Vector3d pc;
               float px[3];
               if (!cam.Project(p, &uv, &pc) || !Sample(img, uv.x(), uv.y(), px)) continue;
-              normalise(cam, pc, model.face_normals[static_cast<std::size_t>(f)], uv, px, channels);
+              normalise(cam, rotation[static_cast<std::size_t>(vi)], pc,
+                        model.face_normals[static_cast<std::size_t>(f)], uv, px, channels);
               float lum = 0;
               for (int c = 0; c < channels; ++c) lum += px[c];
               sum += lum / channels;
@@ -423,34 +427,50 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
     starts.push_back(work.size());
     arena.execute([&] {
       tbb::parallel_for(std::size_t{0}, starts.size() - 1, [&](std::size_t run) {
-        for (std::size_t wi = starts[run]; wi < starts[run + 1]; ++wi) {
-          const auto f = static_cast<std::size_t>(work[wi].first);
-          const int vi = work[wi].second;
-          const cv::Mat& img = images[static_cast<std::size_t>(vi - v0)];
-          const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
-          const float gain = static_cast<float>(R.views[static_cast<std::size_t>(vi)].gain);
-          const Chart& c = charts[f];
-          const Face& F = model.faces[f];
-          const bool own = R.faces[f].view == vi;
-          const bool blend = face_views[f].size() > 1;
+        const auto f = static_cast<std::size_t>(work[starts[run]].first);
+        const Chart& c = charts[f];
+        const Face& F = model.faces[f];
+        const bool blend = face_views[f].size() > 1;
+        // The face's views in this chunk, in view order.
+        struct Use {
+          const cv::Mat* img;
+          const MosaicCamera* cam;
+          const Eigen::Matrix3d* rot;
+          float gain;
+          bool own;
           float wc[3];
-          for (int k = 0; k < 3; ++k) wc[k] = vw[static_cast<std::size_t>(F[k])].Of(vi);
-          for (int j = 0; j < c.h; ++j) {
-            auto* row = sum.ptr<cv::Vec4f>(c.y + j) + c.x;
-            for (int i = 0; i < c.w; ++i) {
-              bool inside;
-              const auto [p, b] = texel_point(f, i, j, &inside);
+        };
+        std::vector<Use> uses;
+        for (std::size_t wi = starts[run]; wi < starts[run + 1]; ++wi) {
+          const int vi = work[wi].second;
+          Use u{&images[static_cast<std::size_t>(vi - v0)],
+                &cameras[static_cast<std::size_t>(vi)],
+                &rotation[static_cast<std::size_t>(vi)],
+                static_cast<float>(R.views[static_cast<std::size_t>(vi)].gain),
+                R.faces[f].view == vi,
+                {}};
+          for (int k = 0; k < 3; ++k) u.wc[k] = vw[static_cast<std::size_t>(F[k])].Of(vi);
+          uses.push_back(u);
+        }
+        // Texel by texel (its point once), each view in turn: per texel the
+        // same sum, in the same order, as view after view.
+        for (int j = 0; j < c.h; ++j) {
+          auto* row = sum.ptr<cv::Vec4f>(c.y + j) + c.x;
+          for (int i = 0; i < c.w; ++i) {
+            bool inside;
+            const auto [p, b] = texel_point(f, i, j, &inside);
+            cv::Vec4f& s = row[i];
+            for (const Use& u : uses) {
               // Feathered weight; a face no other view blends into takes its own view alone.
-              float w = blend ? static_cast<float>(b[0] * wc[0] + b[1] * wc[1] + b[2] * wc[2]) : 1.0f;
-              if (own) w = std::max(w, 1e-3f);  // the chosen view always counts a little
+              float w = blend ? static_cast<float>(b[0] * u.wc[0] + b[1] * u.wc[1] + b[2] * u.wc[2]) : 1.0f;
+              if (u.own) w = std::max(w, 1e-3f);  // the chosen view always counts a little
               if (w <= 0) continue;
               Eigen::Vector2d uv;
               Eigen::Vector3d pc;
               float px[kMaxChannels];
-              if (!cam.Project(p, &uv, &pc) || !Sample(img, uv.x(), uv.y(), px)) continue;
-              normalise(cam, pc, model.face_normals[f], uv, px, channels);
-              cv::Vec4f& s = row[i];
-              for (int k = 0; k < channels; ++k) s[k] += w * gain * px[k];
+              if (!u.cam->Project(p, &uv, &pc) || !Sample(*u.img, uv.x(), uv.y(), px)) continue;
+              normalise(*u.cam, *u.rot, pc, model.face_normals[f], uv, px, channels);
+              for (int k = 0; k < channels; ++k) s[k] += w * u.gain * px[k];
               s[3] += w;
             }
           }
