@@ -31,7 +31,8 @@ std::uint64_t Key(std::int64_t x, std::int64_t y, std::int64_t z) {
 // The cell index of a coordinate, clamped to the key's range.
 std::int64_t CellOf(double x, double origin, double cell) {
   const double i = std::floor((x - origin) / cell);
-  return static_cast<std::int64_t>(std::clamp(i, 0.0, static_cast<double>(kMaxCell)));
+  if (!(i > 0)) return 0;  // and NaN
+  return static_cast<std::int64_t>(std::min(i, static_cast<double>(kMaxCell)));
 }
 
 }  // namespace
@@ -46,19 +47,23 @@ std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f) 
 
 CentroidGrid::CentroidGrid(const std::vector<Eigen::Vector3d>& centroids, double cell) : cell_(cell) {
   if (!(cell > 0)) throw std::invalid_argument("CentroidGrid: the cell size must be positive");
+  // A centroid that is not finite is never within range of anything: left out.
   origin_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  for (const Eigen::Vector3d& g : centroids) origin_ = origin_.cwiseMin(g);
-  if (centroids.empty()) origin_.setZero();
+  Eigen::Vector3d hi = -origin_;
+  for (const Eigen::Vector3d& g : centroids) {
+    if (g.allFinite()) origin_ = origin_.cwiseMin(g), hi = hi.cwiseMax(g);
+  }
+  if (!origin_.allFinite()) origin_.setZero(), hi.setZero();
   // Grow the cell until the extent fits the key (a model kilometres across).
-  Eigen::Vector3d hi = origin_;
-  for (const Eigen::Vector3d& g : centroids) hi = hi.cwiseMax(g);
   while ((hi - origin_).maxCoeff() / cell_ >= static_cast<double>(kMaxCell)) cell_ *= 2;
-  std::vector<std::pair<std::uint64_t, int>> keyed(centroids.size());
+  std::vector<std::pair<std::uint64_t, int>> keyed;
+  keyed.reserve(centroids.size());
   for (std::size_t f = 0; f < centroids.size(); ++f) {
     const Eigen::Vector3d& g = centroids[f];
-    keyed[f] = {
+    if (!g.allFinite()) continue;
+    keyed.emplace_back(
         Key(CellOf(g.x(), origin_.x(), cell_), CellOf(g.y(), origin_.y(), cell_), CellOf(g.z(), origin_.z(), cell_)),
-        static_cast<int>(f)};
+        static_cast<int>(f));
   }
   std::sort(keyed.begin(), keyed.end());
   order_.resize(keyed.size());

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -371,6 +372,7 @@ TEST(Mosaic, CentroidGridFindsEveryCentroidInTheBall) {
   std::uniform_real_distribution<double> u(-20, 20);
   std::vector<Eigen::Vector3d> g(5000);
   for (auto& p : g) p = Eigen::Vector3d(u(rng), u(rng), 0.1 * u(rng));
+  g[17].x() = std::numeric_limits<double>::quiet_NaN();  // a degenerate face: never near anything
   const mosaic_internal::CentroidGrid grid(g, 1.25);
   for (int q = 0; q < 200; ++q) {
     const Eigen::Vector3d c(u(rng), u(rng), u(rng) * 0.1);
@@ -379,6 +381,7 @@ TEST(Mosaic, CentroidGridFindsEveryCentroidInTheBall) {
     grid.Near(c, r, &near);
     std::sort(near.begin(), near.end());
     EXPECT_TRUE(std::adjacent_find(near.begin(), near.end()) == near.end()) << "a face twice";
+    EXPECT_FALSE(std::binary_search(near.begin(), near.end(), 17));
     for (std::size_t f = 0; f < g.size(); ++f) {
       if ((g[f] - c).norm() <= r) {
         EXPECT_TRUE(std::binary_search(near.begin(), near.end(), static_cast<int>(f))) << "face " << f;
