@@ -112,10 +112,11 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
     photo_top = MakeSurveyCamera(in.manifest, options.photometry, false);
     if (stereo) photo_bottom = MakeSurveyCamera(in.manifest, options.photometry, true);
   }
-  // Normalised value of a pixel sample: albedo estimate (model) or the raw share of full scale.
   // Each view's x_Mc rotation as a matrix, made once (not per sample).
   std::vector<Eigen::Matrix3d> rotation(cameras.size());
   for (std::size_t vi = 0; vi < cameras.size(); ++vi) rotation[vi] = cameras[vi].x_Mc().rotation();
+  // Normalised value of a pixel sample (rot: the view's rotation): albedo
+  // estimate (model) or the raw share of full scale.
   auto normalise = [&](const MosaicCamera& cam, const Eigen::Matrix3d& rot, const Eigen::Vector3d& p_c,
                        const Eigen::Vector3d& n_M, const Eigen::Vector2d& uv, float* px, int ch) {
     if (!use_model) return;
