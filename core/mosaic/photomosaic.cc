@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <future>
+#include <exception>
 #include <memory>
 #include <numeric>
 #include <opencv2/core.hpp>
@@ -27,26 +27,18 @@ using mosaic_internal::Candidate;
 using mosaic_internal::Chart;
 using mosaic_internal::ChooseViews;
 using mosaic_internal::FaceNeighbours;
+using mosaic_internal::FaceSamples;
 using mosaic_internal::FeatherWeights;
 using mosaic_internal::FlatChart;
 using mosaic_internal::kSamples;
 using mosaic_internal::PackShelves;
 using mosaic_internal::Sample;
+using mosaic_internal::SeenFaces;
 using mosaic_internal::SplitLongEdges;
 using mosaic_internal::ViewWeights;
 
 using Clock = std::chrono::steady_clock;
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-
-// The centroid and three points toward the corners (85 % of the way): a face
-// counts as seen only when all four are.
-std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f) {
-  const Face& F = m.faces[static_cast<std::size_t>(f)];
-  const Eigen::Vector3d a = m.vertices[static_cast<std::size_t>(F[0])], b = m.vertices[static_cast<std::size_t>(F[1])],
-                        c = m.vertices[static_cast<std::size_t>(F[2])];
-  const Eigen::Vector3d g = (a + b + c) / 3.0;
-  return {g, g + 0.85 * (a - g), g + 0.85 * (b - g), g + 0.85 * (c - g)};
-}
 
 // Nearest-rank percentile (q in [0, 1]) of a non-empty sample.
 double Percentile(std::vector<double> v, double q) {
@@ -120,11 +112,15 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
     photo_top = MakeSurveyCamera(in.manifest, options.photometry, false);
     if (stereo) photo_bottom = MakeSurveyCamera(in.manifest, options.photometry, true);
   }
-  // Normalised value of a pixel sample: albedo estimate (model) or the raw share of full scale.
-  auto normalise = [&](const MosaicCamera& cam, const Eigen::Vector3d& p_c, const Eigen::Vector3d& n_M,
-                       const Eigen::Vector2d& uv, float* px, int ch) {
+  // Each view's x_Mc rotation as a matrix, made once (not per sample).
+  std::vector<Eigen::Matrix3d> rotation(cameras.size());
+  for (std::size_t vi = 0; vi < cameras.size(); ++vi) rotation[vi] = cameras[vi].x_Mc().rotation();
+  // Normalised value of a pixel sample (rot: the view's rotation): albedo
+  // estimate (model) or the raw share of full scale.
+  auto normalise = [&](const MosaicCamera& cam, const Eigen::Matrix3d& rot, const Eigen::Vector3d& p_c,
+                       const Eigen::Vector3d& n_M, const Eigen::Vector2d& uv, float* px, int ch) {
     if (!use_model) return;
-    Eigen::Vector3d n_c = cam.x_Mc().rotation().transpose() * n_M;
+    Eigen::Vector3d n_c = rot.transpose() * n_M;
     if (n_c.dot(p_c) > 0) n_c = -n_c;  // the side facing the camera
     const UnderwaterCamera& u = cam.bottom() ? *photo_bottom : *photo_top;
     const UnderwaterCamera::Response r = u.ResponseAt(p_c, n_c, uv.x(), uv.y());
@@ -135,43 +131,9 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
   // ---- Candidates: visible, unoccluded, in the image, near and frontal enough.
   progress.Update(0.0, "visibility of " + std::to_string(nf) + " faces in " + std::to_string(nviews) + " images");
   const auto t_vis = Clock::now();
-  const double cos_max = std::cos(options.max_incidence_deg * M_PI / 180.0);
-  const double margin = options.image_margin;
-  std::vector<std::vector<std::pair<int, float>>> seen(static_cast<std::size_t>(nviews));  // view -> (face, score)
-  arena.execute([&] {
-    tbb::parallel_for(0, nviews, [&](int vi) {
-      if (progress.Cancelled()) return;
-      const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
-      const Eigen::Vector3d o = cam.centre();
-      std::vector<std::pair<int, float>> pass;
-      std::vector<Eigen::Vector3d> points;
-      for (std::size_t f = 0; f < nf; ++f) {
-        const Eigen::Vector3d g = model.FaceCentroid(static_cast<int>(f));
-        const Eigen::Vector3d to = o - g;
-        const double d = to.norm();
-        if (!(d > 1e-6 && d <= options.max_range)) continue;
-        const double cosi = model.face_normals[f].dot(to) / d;
-        if (cosi < cos_max) continue;
-        bool in_image = true;
-        for (int i = 0; i < 3 && in_image; ++i) {
-          Eigen::Vector2d uv;
-          in_image = cam.Project(model.vertices[static_cast<std::size_t>(model.faces[f][i])], &uv) &&
-                     uv.x() >= margin && uv.y() >= margin && uv.x() <= W - 1 - margin && uv.y() <= H - 1 - margin;
-        }
-        if (!in_image) continue;
-        pass.emplace_back(static_cast<int>(f), static_cast<float>(cosi / (d * d)));
-        for (const Eigen::Vector3d& p : FaceSamples(model, static_cast<int>(f))) points.push_back(p);
-      }
-      std::unique_ptr<bool[]> blocked(new bool[points.size() + 1]);
-      index.OccludedToward(points.data(), static_cast<int>(points.size()), o, 1e-3, blocked.get());
-      auto& out = seen[static_cast<std::size_t>(vi)];
-      for (std::size_t i = 0; i < pass.size(); ++i) {
-        bool free = true;
-        for (int s = 0; s < kSamples; ++s) free = free && !blocked[i * kSamples + static_cast<std::size_t>(s)];
-        if (free) out.push_back(pass[i]);
-      }
-    });
-  });
+  mosaic_internal::Visibility vis;
+  arena.execute([&] { vis = SeenFaces(model, index, cameras, W, H, options, progress); });
+  std::vector<std::vector<std::pair<int, float>>>& seen = vis.seen;  // view -> (face, score)
   progress.ThrowIfCancelled();
   std::vector<std::vector<Candidate>> cand(nf);
   for (int vi = 0; vi < nviews; ++vi) {
@@ -180,6 +142,9 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
       cand[static_cast<std::size_t>(f)].push_back({vi, s, 0});
   }
   seen.clear();
+  R.summary.visibility_pairs_near = vis.near;
+  R.summary.visibility_pairs_projected = vis.projected;
+  R.summary.visibility_rays = vis.rays;
   R.summary.seconds.visibility = Since(t_vis);
 
   // ---- Labelling: best view, then Potts smoothing by iterated conditional modes.
@@ -280,54 +245,64 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
     face_views[f] = std::move(vs);
   }
 
-  // ---- Images, one pass per stage, read one ahead of use; decoded images
-  // are kept for the second pass (gains, then texturing) within the budget.
-  std::vector<cv::Mat> cache(static_cast<std::size_t>(nviews));
-  std::size_t cached_bytes = 0;
-  const std::size_t cache_budget = options.normalisation == MosaicNormalisation::kModelAndGains
-                                       ? static_cast<std::size_t>(options.image_cache_mb) << 20
-                                       : 0;
-  auto for_each_image = [&](double p0, double p1, const char* what,
-                            const std::function<void(int, const cv::Mat&)>& fn) {
-    std::future<cv::Mat> next;
-    auto read = [&](int vi) {
-      if (!cache[static_cast<std::size_t>(vi)].empty()) {
-        std::promise<cv::Mat> ready;
-        ready.set_value(cache[static_cast<std::size_t>(vi)]);
-        return ready.get_future();
-      }
-      return std::async(std::launch::async, [&, vi] {
-        return in.read_image(view_keyframe[static_cast<std::size_t>(vi)],
-                             cameras[static_cast<std::size_t>(vi)].bottom());
-      });
-    };
-    if (nviews > 0) next = read(0);
-    for (int vi = 0; vi < nviews; ++vi) {
-      cv::Mat img = next.get();
-      if (vi + 1 < nviews) next = read(vi + 1);
-      if (progress.Cancelled()) {
-        if (next.valid()) next.wait();
-        progress.ThrowIfCancelled();
-      }
-      if (img.empty() || img.cols != W || img.rows != H) {
-        throw std::runtime_error("image of keyframe " + std::to_string(R.views[static_cast<std::size_t>(vi)].keyframe) +
-                                 " is not " + std::to_string(W) + "x" + std::to_string(H));
-      }
-      const std::size_t bytes = img.total() * img.elemSize();
-      if (cache[static_cast<std::size_t>(vi)].empty() && cached_bytes + bytes <= cache_budget) {
-        cache[static_cast<std::size_t>(vi)] = img;
-        cached_bytes += bytes;
-      }
-      fn(vi, img);
-      progress.Update(p0 + (p1 - p0) * (vi + 1) / nviews,
-                      std::string(what) + " " + std::to_string(vi + 1) + "/" + std::to_string(nviews));
-    }
-  };
+  // ---- Images, one pass per stage, in chunks of views in order: a chunk's
+  // images are read in parallel (TBB), checked in view order, then worked on
+  // in parallel; decoded images are kept for the second pass (gains, then
+  // texturing) within the budget.
   int channels = 0;
   auto check_channels = [&](const cv::Mat& img) {
     if (channels == 0) channels = img.channels();
     if (img.channels() != channels || (channels != 1 && channels != 3)) {
       throw std::runtime_error("the images mix channel counts (or have neither 1 nor 3 channels)");
+    }
+  };
+  std::vector<cv::Mat> cache(static_cast<std::size_t>(nviews));
+  std::size_t cached_bytes = 0;
+  const std::size_t cache_budget = options.normalisation == MosaicNormalisation::kModelAndGains
+                                       ? static_cast<std::size_t>(options.image_cache_mb) << 20
+                                       : 0;
+  constexpr int kChunk = 64;  // views per chunk
+  auto for_each_chunk = [&](double p0, double p1, const char* what,
+                            const std::function<void(int, int, const std::vector<cv::Mat>&)>& fn) {
+    for (int v0 = 0; v0 < nviews; v0 += kChunk) {
+      progress.ThrowIfCancelled();
+      const int v1 = std::min(nviews, v0 + kChunk);
+      std::vector<cv::Mat> images(static_cast<std::size_t>(v1 - v0));
+      std::vector<std::exception_ptr> failed(images.size());
+      arena.execute([&] {
+        tbb::parallel_for(v0, v1, [&](int vi) {
+          const auto i = static_cast<std::size_t>(vi - v0);
+          if (!cache[static_cast<std::size_t>(vi)].empty()) {
+            images[i] = cache[static_cast<std::size_t>(vi)];
+            return;
+          }
+          try {
+            images[i] = in.read_image(view_keyframe[static_cast<std::size_t>(vi)],
+                                      cameras[static_cast<std::size_t>(vi)].bottom());
+          } catch (...) {
+            failed[i] = std::current_exception();
+          }
+        });
+      });
+      for (int vi = v0; vi < v1; ++vi) {
+        const auto i = static_cast<std::size_t>(vi - v0);
+        if (failed[i]) std::rethrow_exception(failed[i]);
+        const cv::Mat& img = images[i];
+        if (img.empty() || img.cols != W || img.rows != H) {
+          throw std::runtime_error("image of keyframe " +
+                                   std::to_string(R.views[static_cast<std::size_t>(vi)].keyframe) + " is not " +
+                                   std::to_string(W) + "x" + std::to_string(H));
+        }
+        check_channels(img);
+        const std::size_t bytes = img.total() * img.elemSize();
+        if (cache[static_cast<std::size_t>(vi)].empty() && cached_bytes + bytes <= cache_budget) {
+          cache[static_cast<std::size_t>(vi)] = img;
+          cached_bytes += bytes;
+        }
+      }
+      fn(v0, v1, images);
+      progress.Update(p0 + (p1 - p0) * v1 / nviews,
+                      std::string(what) + " " + std::to_string(v1) + "/" + std::to_string(nviews));
     }
   };
 
@@ -343,28 +318,30 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
         cand_of_view[static_cast<std::size_t>(cand[f][s].view)].emplace_back(static_cast<int>(f), static_cast<int>(s));
       }
     }
-    for_each_image(0.3, 0.6, "gains: image", [&](int vi, const cv::Mat& img) {
-      check_channels(img);
-      const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
-      const auto& list = cand_of_view[static_cast<std::size_t>(vi)];
+    // Every (face, slot) belongs to one view: the views of a chunk run in parallel.
+    for_each_chunk(0.3, 0.6, "gains: image", [&](int v0, int v1, const std::vector<cv::Mat>& images) {
       arena.execute([&] {
-        tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t i) {
-          const auto [f, slot] = list[i];
-          double sum = 0;
-          int n = 0;
-          for (const Eigen::Vector3d& p : FaceSamples(model, f)) {
-            Eigen::Vector2d uv;
-            Eigen::Vector3d pc;
-            float px[3];
-            if (!cam.Project(p, &uv, &pc) || !Sample(img, uv.x(), uv.y(), px)) continue;
-            normalise(cam, pc, model.face_normals[static_cast<std::size_t>(f)], uv, px, channels);
-            float lum = 0;
-            for (int c = 0; c < channels; ++c) lum += px[c];
-            sum += lum / channels;
-            ++n;
+        tbb::parallel_for(v0, v1, [&](int vi) {
+          const cv::Mat& img = images[static_cast<std::size_t>(vi - v0)];
+          const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
+          for (const auto& [f, slot] : cand_of_view[static_cast<std::size_t>(vi)]) {
+            double sum = 0;
+            int n = 0;
+            for (const Eigen::Vector3d& p : FaceSamples(model, f)) {
+              Eigen::Vector2d uv;
+              Eigen::Vector3d pc;
+              float px[3];
+              if (!cam.Project(p, &uv, &pc) || !Sample(img, uv.x(), uv.y(), px)) continue;
+              normalise(cam, rotation[static_cast<std::size_t>(vi)], pc,
+                        model.face_normals[static_cast<std::size_t>(f)], uv, px, channels);
+              float lum = 0;
+              for (int c = 0; c < channels; ++c) lum += px[c];
+              sum += lum / channels;
+              ++n;
+            }
+            cand[static_cast<std::size_t>(f)][static_cast<std::size_t>(slot)].value =
+                n == kSamples ? static_cast<float>(sum / n) : 0.0f;
           }
-          cand[static_cast<std::size_t>(f)][static_cast<std::size_t>(slot)].value =
-              n == kSamples ? static_cast<float>(sum / n) : 0.0f;
         });
       });
     });
@@ -435,37 +412,68 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
                               b[2] * model.vertices[static_cast<std::size_t>(F[2])];
     return std::make_pair(p, b);
   };
-  for_each_image(p_tex0, 0.9, "texturing: image", [&](int vi, const cv::Mat& img) {
-    check_channels(img);
-    const MosaicCamera& cam = cameras[static_cast<std::size_t>(vi)];
-    const float gain = static_cast<float>(R.views[static_cast<std::size_t>(vi)].gain);
-    const auto& list = view_faces[static_cast<std::size_t>(vi)];
+  // A face's texels are its own (charts do not overlap): the faces of a
+  // chunk run in parallel, each adding its views in view order, so every
+  // texel sums its views in the same order as one view after the other.
+  for_each_chunk(p_tex0, 0.9, "texturing: image", [&](int v0, int v1, const std::vector<cv::Mat>& images) {
+    std::vector<std::pair<int, int>> work;  // (face, view), by face then view
+    for (int vi = v0; vi < v1; ++vi) {
+      for (int f : view_faces[static_cast<std::size_t>(vi)]) work.emplace_back(f, vi);
+    }
+    std::sort(work.begin(), work.end());
+    std::vector<std::size_t> starts;  // where each face's run begins
+    for (std::size_t i = 0; i < work.size(); ++i) {
+      if (i == 0 || work[i].first != work[i - 1].first) starts.push_back(i);
+    }
+    starts.push_back(work.size());
     arena.execute([&] {
-      tbb::parallel_for(std::size_t{0}, list.size(), [&](std::size_t li) {
-        const auto f = static_cast<std::size_t>(list[li]);
+      tbb::parallel_for(std::size_t{0}, starts.size() - 1, [&](std::size_t run) {
+        const auto f = static_cast<std::size_t>(work[starts[run]].first);
         const Chart& c = charts[f];
         const Face& F = model.faces[f];
-        const bool own = R.faces[f].view == vi;
         const bool blend = face_views[f].size() > 1;
-        float wc[3];
-        for (int k = 0; k < 3; ++k) wc[k] = vw[static_cast<std::size_t>(F[k])].Of(vi);
+        // The face's views in this chunk, in view order.
+        struct Use {
+          const cv::Mat* img;
+          const MosaicCamera* cam;
+          const Eigen::Matrix3d* rot;
+          float gain;
+          bool own;
+          float wc[3];
+        };
+        std::vector<Use> uses;
+        for (std::size_t wi = starts[run]; wi < starts[run + 1]; ++wi) {
+          const int vi = work[wi].second;
+          Use u{&images[static_cast<std::size_t>(vi - v0)],
+                &cameras[static_cast<std::size_t>(vi)],
+                &rotation[static_cast<std::size_t>(vi)],
+                static_cast<float>(R.views[static_cast<std::size_t>(vi)].gain),
+                R.faces[f].view == vi,
+                {}};
+          for (int k = 0; k < 3; ++k) u.wc[k] = vw[static_cast<std::size_t>(F[k])].Of(vi);
+          uses.push_back(u);
+        }
+        // Texel by texel (its point once), each view in turn: per texel the
+        // same sum, in the same order, as view after view.
         for (int j = 0; j < c.h; ++j) {
           auto* row = sum.ptr<cv::Vec4f>(c.y + j) + c.x;
           for (int i = 0; i < c.w; ++i) {
             bool inside;
             const auto [p, b] = texel_point(f, i, j, &inside);
-            // Feathered weight; a face no other view blends into takes its own view alone.
-            float w = blend ? static_cast<float>(b[0] * wc[0] + b[1] * wc[1] + b[2] * wc[2]) : 1.0f;
-            if (own) w = std::max(w, 1e-3f);  // the chosen view always counts a little
-            if (w <= 0) continue;
-            Eigen::Vector2d uv;
-            Eigen::Vector3d pc;
-            float px[kMaxChannels];
-            if (!cam.Project(p, &uv, &pc) || !Sample(img, uv.x(), uv.y(), px)) continue;
-            normalise(cam, pc, model.face_normals[f], uv, px, channels);
             cv::Vec4f& s = row[i];
-            for (int k = 0; k < channels; ++k) s[k] += w * gain * px[k];
-            s[3] += w;
+            for (const Use& u : uses) {
+              // Feathered weight; a face no other view blends into takes its own view alone.
+              float w = blend ? static_cast<float>(b[0] * u.wc[0] + b[1] * u.wc[1] + b[2] * u.wc[2]) : 1.0f;
+              if (u.own) w = std::max(w, 1e-3f);  // the chosen view always counts a little
+              if (w <= 0) continue;
+              Eigen::Vector2d uv;
+              Eigen::Vector3d pc;
+              float px[kMaxChannels];
+              if (!u.cam->Project(p, &uv, &pc) || !Sample(*u.img, uv.x(), uv.y(), px)) continue;
+              normalise(*u.cam, *u.rot, pc, model.face_normals[f], uv, px, channels);
+              for (int k = 0; k < channels; ++k) s[k] += w * u.gain * px[k];
+              s[3] += w;
+            }
           }
         }
       });

@@ -65,6 +65,8 @@ struct MosaicInput {
   TriangleMesh model;                   // the remeshed model in M
   // Whether keyframe index k has an image of the top (bottom) camera, and
   // reading it (8/16-bit, 1 or 3 channels; throws InputError naming the file).
+  // read_image is called from several threads at once (a chunk of views is
+  // read in parallel).
   std::function<bool(std::size_t k, bool bottom)> has_image;
   std::function<cv::Mat(std::size_t k, bool bottom)> read_image;
 };
@@ -98,6 +100,9 @@ struct MosaicSummary {
   double gain_min = 1, gain_median = 1, gain_max = 1;
   std::size_t faces_scored = 0;
   double error_median = 0, error_p95 = 0, mean_error_median = 0, mean_error_p95 = 0;
+  // The visibility stage's work: (view, face) pairs the centroid grid
+  // returned, pairs whose corners were projected, rays cast.
+  std::size_t visibility_pairs_near = 0, visibility_pairs_projected = 0, visibility_rays = 0;
   struct Seconds {
     double visibility = 0, labelling = 0, gains = 0, texturing = 0, scoring = 0, total = 0;
   } seconds;
@@ -123,7 +128,7 @@ struct MosaicResult {
 };
 
 // Builds the mosaic; `truth` (optional) scores it. Progress and
-// cancellation (throws Cancelled) between views.
+// cancellation (throws Cancelled) between chunks of 64 views.
 MosaicResult BuildMosaic(const MosaicInput& input, const MosaicOptions& options, Progress& progress,
                          const TrueScene* truth = nullptr);
 

@@ -1,18 +1,26 @@
 // Private to core/mosaic: what BuildMosaic (photomosaic.cc) shares with its
-// view-choice stages (mosaic_views.cc: edge splitting, face adjacency, the
-// Potts labelling, feathering weights) and its atlas geometry
+// visibility stage (mosaic_visibility.cc: the centroid grid, the views'
+// candidate faces), its view-choice stages (mosaic_views.cc: edge
+// splitting, face adjacency, the Potts labelling, feathering weights) and
+// its atlas geometry
 // (mosaic_atlas.cc: flat charts, shelf packing, barycentrics, bilinear
 // image samples). Not installed, not for other modules.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <opencv2/core/mat.hpp>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
+#include "base/progress.h"
+#include "geometry/mesh_index.h"
 #include "geometry/triangle_mesh.h"
+#include "mosaic/mosaic_camera.h"
 #include "mosaic/photomosaic.h"
 
 namespace hull {
@@ -26,6 +34,47 @@ struct Candidate {
   float score = 0;  // cos(incidence) / distance^2
   float value = 0;  // mean normalised value at the face's samples (before gains); <= 0: unusable for gains
 };
+
+// ---- mosaic_visibility.cc
+
+// The centroid and three points toward the corners (85 % of the way): a face
+// counts as seen only when all four are.
+std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f);
+
+// Face centroids binned in a uniform grid of cubes (a hash of the occupied
+// cells): the faces whose centroid may lie within a radius of a point,
+// without touching the others.
+class CentroidGrid {
+ public:
+  CentroidGrid(const std::vector<Eigen::Vector3d>& centroids, double cell);
+  // Appends every face whose centroid lies within r of c, and others of the
+  // cells the ball touches (a superset), cell by cell.
+  void Near(const Eigen::Vector3d& c, double r, std::vector<int>* faces) const;
+  double cell() const { return cell_; }
+
+ private:
+  double cell_;
+  Eigen::Vector3d origin_;
+  std::vector<int> order_;                                                        // faces by cell
+  std::unordered_map<std::uint64_t, std::pair<std::size_t, std::size_t>> cells_;  // key -> [begin, end) of order_
+};
+
+// The candidate rule for view v and face f: the centroid within max_range
+// of the camera centre, the face turned toward it within max_incidence_deg,
+// all three corners image_margin inside the width x height image (in front
+// of the camera), and the rays from the four FaceSamples to the camera
+// centre free (MeshIndex::OccludedToward, ignoring the first millimetre).
+// score = cos(incidence) / distance^2.
+struct Visibility {
+  std::vector<std::vector<std::pair<int, float>>> seen;  // per view: (face, score), in face order
+  std::size_t near = 0;       // (view, face) pairs the grid returned (centroid in cells of the range ball)
+  std::size_t projected = 0;  // pairs in range, frontal, centroid in the frustum: corners projected
+  std::size_t rays = 0;       // rays cast (four per pair with its corners in the image)
+};
+// Runs on the calling thread's TBB arena, in parallel over the views;
+// a cancelled `progress` leaves the remaining views empty.
+Visibility SeenFaces(const TriangleMesh& model, const MeshIndex& index, const std::vector<MosaicCamera>& cameras,
+                     int width, int height, const MosaicOptions& options, Progress& progress);
 
 // ---- mosaic_views.cc
 

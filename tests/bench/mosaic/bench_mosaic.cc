@@ -165,6 +165,10 @@ int main(int argc, char** argv) {
         "mosaic: wall %.2f s, CPU %.2f s (visibility %.2f, labelling %.2f, gains %.2f, texturing %.2f, "
         "scoring %.2f)\n",
         wall, cpu, s.seconds.visibility, s.seconds.labelling, s.seconds.gains, s.seconds.texturing, s.seconds.scoring);
+    std::size_t candidates = 0;
+    for (const hull::MosaicView& v : r.views) candidates += static_cast<std::size_t>(v.candidates);
+    std::printf("visibility: %zu (view, face) pairs near a camera, %zu projected, %zu rays, %zu candidates\n",
+                s.visibility_pairs_near, s.visibility_pairs_projected, s.visibility_rays, candidates);
     if (s.faces_scored > 0) {
       std::printf("truth: |error| median %.4f p95 %.4f; face means median %.4f p95 %.4f\n", s.error_median, s.error_p95,
                   s.mean_error_median, s.mean_error_p95);

@@ -4,7 +4,10 @@
 //   values, hard seams, so the atlas holds the image itself);
 // - visibility: a plate between the nearest camera and part of a plane
 //   hides that part from it, and no face is ever textured from a camera
-//   whose line of sight the plate blocks (checked analytically here);
+//   whose line of sight the plate blocks (checked analytically here); the
+//   visibility stage's culled search (centroid grid, frustum) finds exactly
+//   what the candidate rule applied to every (view, face) pair finds, on a
+//   stereo rig with mount, servo, extrinsic and model pose;
 // - colour: on a small rendered survey (the underwater renderer, true poses,
 //   the true surface as the model) the per-face error against the true
 //   albedo stays below the bound justified at the test, and the photometric
@@ -12,8 +15,10 @@
 // - the written folder: OBJ, MTL, atlas, PLY, JSON and CSV.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -24,6 +29,7 @@
 #include "mosaic/mosaic_camera.h"
 #include "mosaic/mosaic_io.h"
 #include "mosaic/photomosaic.h"
+#include "mosaic/photomosaic_internal.h"
 #include "simulate/survey_imaging.h"
 #include "support/test_files.h"
 
@@ -244,6 +250,150 @@ TEST(Mosaic, OccludedViewIsNeverChosen) {
   EXPECT_EQ(hidden_from_a_taken_from_b, hidden_from_a);  // ... and B textures all of that part
   EXPECT_GT(seen_by_a, 500);                             // elsewhere A, the better view, wins
   EXPECT_GT(r.summary.seam_edges, 0u);
+}
+
+// ---- Visibility: the culled search against the rule on every pair.
+
+// The candidate rule applied to every (view, face) pair, one ray at a time:
+// what SeenFaces must return.
+std::vector<std::vector<std::pair<int, float>>> SeenByEveryPair(const TriangleMesh& m, const MeshIndex& index,
+                                                                const std::vector<MosaicCamera>& cams,
+                                                                const MosaicOptions& o, int* rejected) {
+  const double cos_max = std::cos(o.max_incidence_deg * M_PI / 180.0);
+  std::vector<std::vector<std::pair<int, float>>> seen(cams.size());
+  for (std::size_t v = 0; v < cams.size(); ++v) {
+    const Eigen::Vector3d c = cams[v].centre();
+    for (std::size_t f = 0; f < m.num_faces(); ++f) {
+      const Eigen::Vector3d to = c - m.FaceCentroid(static_cast<int>(f));
+      const double d = to.norm();
+      if (!(d > 1e-6 && d <= o.max_range)) {
+        ++rejected[0];
+        continue;
+      }
+      const double cosi = m.face_normals[f].dot(to) / d;
+      if (cosi < cos_max) {
+        ++rejected[1];
+        continue;
+      }
+      bool in_image = true;
+      for (int i = 0; i < 3; ++i) {
+        Eigen::Vector2d uv;
+        in_image = in_image && cams[v].Project(m.vertices[static_cast<std::size_t>(m.faces[f][i])], &uv) &&
+                   uv.x() >= o.image_margin && uv.y() >= o.image_margin && uv.x() <= kW - 1 - o.image_margin &&
+                   uv.y() <= kH - 1 - o.image_margin;
+      }
+      if (!in_image) {
+        ++rejected[2];
+        continue;
+      }
+      bool free = true;
+      for (const Eigen::Vector3d& p : mosaic_internal::FaceSamples(m, static_cast<int>(f))) {
+        bool blocked = false;
+        index.OccludedToward(&p, 1, c, 1e-3, &blocked);
+        free = free && !blocked;
+      }
+      if (!free) {
+        ++rejected[3];
+        continue;
+      }
+      seen[v].emplace_back(static_cast<int>(f), static_cast<float>(cosi / (d * d)));
+    }
+  }
+  return seen;
+}
+
+TEST(Mosaic, SeenFacesEqualsTheRuleOnEveryPair) {
+  // A wavy 10 m x 6 m surface (0.2 m cells), a plate floating over it and one
+  // facing away from the cameras; a stereo rig on a servo with a mount,
+  // extrinsic and model pose of their own, 40 keyframes 0.8-3 m above it,
+  // tilted up to 0.4 rad: every part of the rule rejects some pairs.
+  TriangleMesh m;
+  const int nx = 50, ny = 30;
+  for (int j = 0; j <= ny; ++j) {
+    for (int i = 0; i <= nx; ++i) {
+      const double x = -5 + 0.2 * i, y = -3 + 0.2 * j;
+      m.vertices.emplace_back(x, y, 0.25 * std::sin(1.3 * x) * std::cos(0.9 * y));
+    }
+  }
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const int a = j * (nx + 1) + i, b = a + 1, c = a + nx + 1, d = c + 1;
+      m.faces.push_back({a, b, d});
+      m.faces.push_back({a, d, c});
+    }
+  }
+  AddRect(m, -1, 1, -0.5, 0.5, 0.8);
+  const std::size_t down = m.num_faces();
+  AddRect(m, 2, 3, -1, 0, 0.6);
+  for (std::size_t f = down; f < m.num_faces(); ++f) std::swap(m.faces[f][1], m.faces[f][2]);  // facing -z
+  m.ComputeNormals();
+  SurveyManifest rig = PlainManifest();
+  rig.camera.type = CameraType::kStereo;
+  rig.camera.bottom = {kF * 1.02, kF * 0.99, kW / 2.0 + 1.5, kH / 2.0 - 2};
+  rig.camera.top_to_bottom << 0.02, 0.12, 0.01, 0.01, -0.02, 0.005;
+  rig.servo_mount << 0.4, 0.05, 0.2, 0.02, 0, -0.01;
+  Vector6d x_s_cT, x_gM;
+  x_s_cT << 0.05, 0.02, 0.1, 0.02, -0.03, 0.01;
+  x_gM << 0.1, -0.2, 0.05, 0.01, 0.02, -0.03;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ux(-5.5, 5.5), uy(-3.5, 3.5), uz(0.8, 3.0), tilt(-0.4, 0.4), yaw(-M_PI, M_PI);
+  std::vector<MosaicCamera> cams;
+  for (int k = 0; k < 40; ++k) {
+    Vector6d x_gv;
+    x_gv << ux(rng), uy(rng), uz(rng), M_PI + tilt(rng), tilt(rng), yaw(rng);
+    const double servo = tilt(rng);
+    for (bool bottom : {false, true}) cams.emplace_back(rig, x_gv, servo, x_s_cT, x_gM, bottom);
+  }
+  MosaicOptions o;
+  o.max_range = 2.5;  // cells of 0.625 m: the surface spans 16 x 10 of them
+  o.max_incidence_deg = 60;
+  const MeshIndex index(m);
+  int rejected[4] = {0, 0, 0, 0};  // range, incidence, image, occluded
+  const auto expected = SeenByEveryPair(m, index, cams, o, rejected);
+  NullProgress progress;
+  const mosaic_internal::Visibility vis = mosaic_internal::SeenFaces(m, index, cams, kW, kH, o, progress);
+  ASSERT_EQ(vis.seen.size(), cams.size());
+  std::size_t candidates = 0;
+  for (std::size_t v = 0; v < cams.size(); ++v) {
+    EXPECT_EQ(vis.seen[v], expected[v]) << "view " << v;  // the same faces, bit for bit the same scores
+    candidates += expected[v].size();
+  }
+  for (int r = 0; r < 4; ++r) EXPECT_GT(rejected[r], 0) << "rule " << r << " never rejects";
+  EXPECT_GT(candidates, 2000u);
+  // The culls do cull: fewer pairs looked at than all, fewer projected than near.
+  EXPECT_LT(vis.near, cams.size() * m.num_faces() / 2);
+  EXPECT_LT(vis.projected, vis.near / 2);
+  // Rays only for the pairs with their corners in the image: the candidates and the occluded.
+  EXPECT_EQ(vis.rays, 4 * (candidates + static_cast<std::size_t>(rejected[3])));
+}
+
+TEST(Mosaic, CentroidGridFindsEveryCentroidInTheBall) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-20, 20);
+  std::vector<Eigen::Vector3d> g(5000);
+  for (auto& p : g) p = Eigen::Vector3d(u(rng), u(rng), 0.1 * u(rng));
+  g[17].x() = std::numeric_limits<double>::quiet_NaN();  // a degenerate face: never near anything
+  const mosaic_internal::CentroidGrid grid(g, 1.25);
+  for (int q = 0; q < 200; ++q) {
+    const Eigen::Vector3d c(u(rng), u(rng), u(rng) * 0.1);
+    const double r = 0.5 + std::abs(u(rng)) / 4;
+    std::vector<int> near;
+    grid.Near(c, r, &near);
+    std::sort(near.begin(), near.end());
+    EXPECT_TRUE(std::adjacent_find(near.begin(), near.end()) == near.end()) << "a face twice";
+    EXPECT_FALSE(std::binary_search(near.begin(), near.end(), 17));
+    for (std::size_t f = 0; f < g.size(); ++f) {
+      if ((g[f] - c).norm() <= r) {
+        EXPECT_TRUE(std::binary_search(near.begin(), near.end(), static_cast<int>(f))) << "face " << f;
+      }
+    }
+    EXPECT_LT(near.size(), g.size() / 4);
+  }
+  // A point exactly on a cell border and a radius reaching it exactly.
+  const mosaic_internal::CentroidGrid line({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2.5, 0, 0)}, 1.25);
+  std::vector<int> near;
+  line.Near(Eigen::Vector3d(0, 0, 0), 2.5, &near);
+  EXPECT_EQ(near.size(), 2u);
 }
 
 // ---- A small rendered survey.
