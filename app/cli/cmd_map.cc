@@ -34,7 +34,7 @@ options:
   --h-min M            objects: minimum height (default 0.03)
   --min-area M2        objects: minimum footprint area (default 0.01) ...
   --min-features N     ... or, smaller, N shaped features above h_min over it
-                       (default 0: the area test alone; 3 finds narrow lumps) ...
+                       (default 3: finds narrow lumps; 0: the area test alone)
   --min-views N        ... held by the shapes of N keyframes (default 2)
   --refine-edge M      edge length of the refined model (default 0.03)
   --fusion-radius M    fuse vertices within M of the camera (default 5)

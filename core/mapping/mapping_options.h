@@ -82,14 +82,14 @@ struct MappingOptions {
   // ... or, over a smaller footprint, held up by at least this many of the
   // run's shaped features (vertices of Algorithm 1's shapes) lying over it
   // and standing above h_min, ...
-  int object_min_features = 0;
+  int object_min_features = 3;
   // ... that the shapes of at least this many keyframes hold: a tall narrow
   // lump whose footprint above h_min is below object_min_area is still an
   // object when several features seen from several views measured it, while
-  // a blip raised by one or two features is not. object_min_features = 0
-  // (the default) keeps the area test alone: 3 finds narrow lumps at
-  // tau = 0.06 m, but with the fusion along the vertex normal it also made
-  // a false change in the demo pair's comparison (docs/mapping.md, "Objects").
+  // a blip raised by one or two features is not. 0 keeps the area test
+  // alone. The default since Algorithm 1's hysteresis (shape_grow_height):
+  // with it, 3 found more objects and no false object or change on every
+  // measured run at tau = 0 and 0.06 m (docs/mapping.md, "Objects").
   int object_min_views = 2;
 
   // ---- Fouling assessment --------------------------------------------------------

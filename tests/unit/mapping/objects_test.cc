@@ -121,8 +121,9 @@ TEST(DetectedObjects, NarrowLumpHeldUpByFeaturesFromSeveralViews) {
   const Plate plate = MakePlate(0.10, 0.03);
   const std::vector<Landmark> three = {
       {{0.0, 0.0, -0.098}, 0.003}, {{0.01, 0.005, -0.09}, 0.003}, {{-0.005, 0.01, -0.09}, 0.003}};
-  const MappingOptions area_only;  // the default: the area test alone
-  EXPECT_EQ(area_only.object_min_features, 0);
+  EXPECT_EQ(MappingOptions().object_min_features, 3);  // the default: the support test on
+  MappingOptions area_only;
+  area_only.object_min_features = 0;                                // the area test alone
   EXPECT_TRUE(Detect(plate, three, 2, area_only).objects.empty());  // the footprint alone is too small
 
   MappingOptions support;
