@@ -10,6 +10,13 @@
 
 namespace hull {
 
+bool TrackCheckKeeps(const TrackCheck& c, const TrackOptions& o) {
+  if (std::isnan(c.min_height)) return true;
+  if (c.min_height > o.check_max_height || c.max_height < o.check_min_height) return false;
+  return !(c.members.size() >= 3 && c.max_reprojection > o.check_max_reprojection &&
+           c.min_height >= o.check_reprojection_height);
+}
+
 std::vector<TrackCheck> CheckTrackHeights(const std::vector<TrackBuilder::Track>& tracks,
                                           const std::vector<KeyframeView>& views,
                                           const std::vector<std::vector<char>>& has_stereo,
@@ -57,6 +64,9 @@ std::vector<TrackCheck> CheckTrackHeights(const std::vector<TrackBuilder::Track>
         const std::size_t ki = static_cast<std::size_t>(k);
         const Eigen::Vector3d Xc = x_c_g[ki] * X;
         if (Xc.z() <= 0) return;  // behind a camera of its own: left to the adjustment
+        const Eigen::Vector2d uv = (K * Xc).hnormalized();
+        c.max_reprojection =
+            std::max(c.max_reprojection, (uv - views[ki].top.points[static_cast<std::size_t>(f)]).norm());
         if (!planes[ki]) continue;
         const double h = planes[ki]->HeightOf(Xc);
         c.min_height = std::min(c.min_height, h);
@@ -65,7 +75,7 @@ std::vector<TrackCheck> CheckTrackHeights(const std::vector<TrackBuilder::Track>
       if (std::isinf(c.min_height)) {
         c.min_height = c.max_height = std::nan("");
       } else {
-        c.kept = c.min_height <= o.check_max_height && c.max_height >= o.check_min_height;
+        c.kept = TrackCheckKeeps(c, o);
       }
       out[i] = c;
       valid[i] = 1;

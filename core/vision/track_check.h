@@ -29,8 +29,19 @@ struct TrackCheck {
   // Its height in front of the members' DVL planes (m): the smallest and the
   // largest over the members with a plane (NaN: none has one).
   double min_height = 0, max_height = 0;
+  // The largest reprojection error of the point in its members' images
+  // with the prior poses (px; 0 for two keyframes, whose rays meet exactly).
+  double max_reprojection = 0;
   bool kept = true;
 };
+
+// The verdict from a check's figures: dropped when the point stands more
+// than check_max_height in front of every member's plane, or more than
+// -check_min_height behind them, or (three or more keyframes) reprojects
+// more than check_max_reprojection px from a member's feature while standing
+// at least check_reprojection_height in front of every plane. Kept without a
+// plane.
+bool TrackCheckKeeps(const TrackCheck& check, const TrackOptions& options);
 
 // Checks the tracks with at most options.check_max_keyframes keyframes none
 // of whose features has a stereo match (has_stereo[k][f]). views: per

@@ -67,6 +67,8 @@ void TrackOptions::Check() const {
   Require(check_max_keyframes >= 2, "track_check_max_keyframes", "must be at least 2");
   Require(check_max_height > 0, "track_check_max_height", "must be positive (m)");
   Require(check_min_height < 0, "track_check_min_height", "must be negative (m)");
+  Require(check_max_reprojection > 0, "track_check_max_reprojection", "must be positive (px)");
+  Require(std::isfinite(check_reprojection_height), "track_check_reprojection_height", "must be finite (m)");
 }
 
 void FrontEndOptions::Check() const {

@@ -107,6 +107,29 @@ int main(int argc, char** argv) {
       }
     }
   }
+  std::printf("tracks of 3 keyframes by the largest reprojection error (prior poses) and height:\n");
+  std::printf(
+      "| dropped when | right dropped | wrong dropped | wrong > 0.1 m off dropped |\n| --- | --- | --- | --- |\n");
+  for (double px : {2.0, 4.0, 8.0, 16.0}) {
+    for (double h : {0.0, 0.05, 0.1, -1e9}) {
+      std::size_t rd = 0, wd = 0, wfd = 0;
+      for (const Scored& s : scored) {
+        if (s.c->members.size() != 3 || s.c->max_reprojection <= px || s.c->min_height <= h) continue;
+        rd += !s.wrong;
+        wd += s.wrong;
+        wfd += s.wrong && s.off > 0.1;
+      }
+      std::printf("| reprojection > %.0f px and h > %.2f m | %zu | %zu | %zu |\n", px, h, rd, wd, wfd);
+    }
+  }
+  std::printf("wrong tracks of 3 keyframes 0.1-0.25 m in front: off, min height, reprojection px, keyframes\n");
+  for (const Scored& s : scored) {
+    if (!s.wrong || s.c->members.size() != 3 || s.c->min_height < 0.1 || s.c->min_height > 0.25) continue;
+    std::printf("  %.3f m, %.3f m, %.1f px,", s.off, s.c->min_height, s.c->max_reprojection);
+    for (const auto& m : s.c->members)
+      std::printf(" %lld", static_cast<long long>(r.keyframes[static_cast<std::size_t>(m.first)].keyframe));
+    std::printf("\n");
+  }
   std::printf("right tracks standing highest (min height over members), 2-3 keyframes: ");
   std::vector<double> right_h;
   for (const Scored& s : scored) {
@@ -121,7 +144,7 @@ int main(int argc, char** argv) {
     for (const TrackCheck& c : r.track_checks) {
       if (c.members.size() > static_cast<std::size_t>(defaults.check_max_keyframes) || std::isnan(c.min_height))
         continue;
-      if (c.min_height <= defaults.check_max_height && c.max_height >= defaults.check_min_height) continue;
+      if (TrackCheckKeeps(c, defaults)) continue;
       const auto& [k, f] = c.members.front();
       dropped.insert(r.keyframes[static_cast<std::size_t>(k)].landmark[static_cast<std::size_t>(f)]);
     }
