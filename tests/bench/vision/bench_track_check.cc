@@ -55,6 +55,7 @@ int main(int argc, char** argv) {
   o.tracks.check_max_keyframes = 4;  // record, drop nothing
   o.tracks.check_max_height = 1e9;
   o.tracks.check_min_height = -1e9;
+  o.tracks.check_max_reprojection = 1e9;
   NullProgress quiet;
   FrontEndResult r = RunFrontEnd(bundle, o, quiet);
   const CameraRig& rig = bundle.manifest.camera;
