@@ -41,6 +41,9 @@ options:
   --loop-min-inliers N    RANSAC inliers to accept a loop pair (default 20)
   --loop-max-window PX    cap of the drift-grown search window (default 200)
   --min-keyframes N       shortest track kept (default 2)
+  --no-track-check        keep mono tracks however far off the DVL plane they stand
+  --track-check-max-height M   drop short mono tracks this far in front of the DVL plane (default 0.25)
+  --track-check-min-height M   ... or this far behind it (negative, default -0.1)
   --threads N             worker threads (default: all cores)
   --quiet
 )";
@@ -48,14 +51,32 @@ options:
 }  // namespace
 
 int RunFeatures(const CommandArgs& argv) {
-  Args a(argv, {"force", "no-clahe", "no-loops", "quiet"});
+  Args a(argv, {"force", "no-clahe", "no-loops", "no-track-check", "quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"out", "force", "max-features", "no-clahe", "clahe-clip", "epipolar-tolerance", "ratio", "window",
-               "neighbours", "ransac-threshold", "no-loops", "loop-candidates", "loop-min-overlap", "loop-min-inliers",
-               "loop-max-window", "min-keyframes", "threads", "quiet"});
+  a.AllowOnly({"out",
+               "force",
+               "max-features",
+               "no-clahe",
+               "clahe-clip",
+               "epipolar-tolerance",
+               "ratio",
+               "window",
+               "neighbours",
+               "ransac-threshold",
+               "no-loops",
+               "loop-candidates",
+               "loop-min-overlap",
+               "loop-min-inliers",
+               "loop-max-window",
+               "min-keyframes",
+               "no-track-check",
+               "track-check-max-height",
+               "track-check-min-height",
+               "threads",
+               "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
   const std::string bundle_dir = a.positionals()[0];
   FrontEndOptions o;
@@ -73,6 +94,9 @@ int RunFeatures(const CommandArgs& argv) {
   o.loops.min_inliers = static_cast<int>(a.GetInt("loop-min-inliers", o.loops.min_inliers));
   o.loops.max_window = a.GetDouble("loop-max-window", o.loops.max_window);
   o.tracks.min_keyframes = static_cast<int>(a.GetInt("min-keyframes", o.tracks.min_keyframes));
+  o.tracks.check_dvl_height = !a.Has("no-track-check");
+  o.tracks.check_max_height = a.GetDouble("track-check-max-height", o.tracks.check_max_height);
+  o.tracks.check_min_height = a.GetDouble("track-check-min-height", o.tracks.check_min_height);
   o.threads = static_cast<int>(a.GetInt("threads", 0));
   o.Check();
   const std::string out = a.Get("out", (std::filesystem::path(bundle_dir) / "features.csv").string());
@@ -116,8 +140,11 @@ int RunFeatures(const CommandArgs& argv) {
     std::printf("loop closures: overlap predicted for %zu keyframe pairs, %d tried, %d accepted (%d inliers); %.1f s\n",
                 r.loop_pairs_considered, r.loop_pairs_tried, r.loop_pairs_accepted, loop_inliers, r.loop_seconds);
   }
-  std::printf("%d landmarks, %zu observations; %d merges refused, %d short tracks dropped; %.1f s\n", r.landmarks,
-              r.features.size(), r.refused_merges, r.dropped_tracks, r.seconds);
+  std::printf(
+      "%d landmarks, %zu observations; %d merges refused, %d short tracks dropped, %d of %zu mono tracks checked "
+      "dropped off the DVL plane; %.1f s\n",
+      r.landmarks, r.features.size(), r.refused_merges, r.dropped_tracks, r.tracks_failed_check, r.track_checks.size(),
+      r.seconds);
   std::printf("wrote %s\n", out.c_str());
   return kExitOk;
 }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 
@@ -21,6 +22,7 @@
 #include "vision/loop_closure.h"
 #include "vision/stereo_matching.h"
 #include "vision/temporal_matching.h"
+#include "vision/track_check.h"
 
 namespace hull {
 namespace fs = std::filesystem;
@@ -222,7 +224,37 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   TrackBuilder builder(counts);
   for (const Link& l : links) builder.Link(l.ka, l.fa, l.kb, l.fb);
   r.refused_merges = builder.refused();
-  const auto tracks = builder.Tracks(o.tracks.min_keyframes, &r.dropped_tracks);
+  std::vector<TrackBuilder::Track> tracks = builder.Tracks(o.tracks.min_keyframes, &r.dropped_tracks);
+  if (o.tracks.check_dvl_height) {
+    progress.Update(0.97, "checking mono tracks against the DVL");
+    std::vector<std::vector<char>> has_stereo(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      has_stereo[i].assign(views[i].top.size(), 0);
+      for (const StereoMatch& s : views[i].stereo) has_stereo[i][static_cast<std::size_t>(s.top)] = 1;
+    }
+    std::unordered_map<std::int64_t, const DvlRecord*> dvl_of;
+    for (const DvlRecord& d : bundle.dvl) dvl_of.emplace(d.keyframe, &d);
+    std::vector<std::optional<CameraPlane>> planes(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto d = dvl_of.find(views[i].keyframe);
+      CameraPlane plane;
+      if (d != dvl_of.end() && DvlPlane(man, *d->second, plane)) planes[i] = plane;
+    }
+    r.track_checks = CheckTrackHeights(tracks, views, has_stereo, planes, rig, o.tracks, o.threads);
+    std::vector<char> keep(tracks.size(), 1);
+    for (const TrackCheck& c : r.track_checks) {
+      if (!c.kept) {
+        keep[static_cast<std::size_t>(c.track)] = 0;
+        ++r.tracks_failed_check;
+      }
+    }
+    std::vector<TrackBuilder::Track> kept;
+    kept.reserve(tracks.size());
+    for (std::size_t t = 0; t < tracks.size(); ++t) {
+      if (keep[t]) kept.push_back(std::move(tracks[t]));
+    }
+    tracks = std::move(kept);
+  }
   for (std::size_t i = 0; i < n; ++i) {
     for (FrontEndStereoLink& s : r.keyframes[i].stereo) s.verdict = verdicts[i][static_cast<std::size_t>(s.top)];
     r.keyframes[i].landmark.assign(views[i].top.size(), -1);

@@ -12,6 +12,7 @@
 
 #include "base/progress.h"
 #include "survey/survey.h"
+#include "vision/track_check.h"
 #include "vision/vision_options.h"
 
 namespace hull {
@@ -72,6 +73,10 @@ struct FrontEndResult {
   int landmarks = 0;                         // tracks written (ids 0 .. landmarks-1)
   int refused_merges = 0;                    // links refused: would put two features of one image in a track
   int dropped_tracks = 0;                    // tracks seen in fewer than min_keyframes keyframes
+  // The DVL height check of mono tracks (track_check.h): every track
+  // checked with its verdict; those not kept are not written.
+  std::vector<TrackCheck> track_checks;
+  int tracks_failed_check = 0;
   // Loop closures: keyframe pairs whose overlap was predicted, the pairs
   // tried (the candidates, in `pairs` with loop set) and accepted, and the
   // time spent on them (candidate search and matching, wall clock).

@@ -37,8 +37,7 @@ KeyframeFootprint StereoFootprint(const KeyframeView& view, int max_points) {
   return f;
 }
 
-KeyframeFootprint DvlFootprint(const SurveyManifest& man, const DvlRecord& dvl, int max_points) {
-  KeyframeFootprint f;
+bool DvlPlane(const SurveyManifest& man, const DvlRecord& dvl, CameraPlane& plane) {
   // The DVL and the camera ride on the same servo: x_cT_d = (-)servo_to_top (+) servo_to_dvl.
   const Pose x_c_d = Pose::FromVector(man.camera.servo_to_top).Inverse() * Pose::FromVector(man.servo_to_dvl);
   std::vector<Eigen::Vector3d> hits;
@@ -48,7 +47,7 @@ KeyframeFootprint DvlFootprint(const SurveyManifest& man, const DvlRecord& dvl, 
     const Eigen::Vector3d p = x_c_d * (r * man.BeamDirection(b));
     if (p.z() > 0) hits.push_back(p);
   }
-  if (hits.empty() || max_points < 1) return f;
+  if (hits.empty()) return false;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const auto& p : hits) c += p;
   c /= static_cast<double>(hits.size());
@@ -61,8 +60,20 @@ KeyframeFootprint DvlFootprint(const SurveyManifest& man, const DvlRecord& dvl, 
     if (normal.dot(c) < 0) normal = -normal;
   }
   const double nc = normal.dot(c);
-  if (!(nc > 0)) return f;  // the plane passes through (or behind) the camera
-  const double far = 3.0 * c.z();
+  if (!(nc > 0)) return false;  // the plane passes through (or behind) the camera
+  plane.normal = normal;
+  plane.offset = nc;
+  plane.centre = c;
+  return true;
+}
+
+KeyframeFootprint DvlFootprint(const SurveyManifest& man, const DvlRecord& dvl, int max_points) {
+  KeyframeFootprint f;
+  CameraPlane plane;
+  if (max_points < 1 || !DvlPlane(man, dvl, plane)) return f;
+  const Eigen::Vector3d& normal = plane.normal;
+  const double nc = plane.offset;
+  const double far = 3.0 * plane.centre.z();
   const CameraRig& rig = man.camera;
   const double aspect = static_cast<double>(rig.width) / rig.height;
   const int nx = std::max(2, static_cast<int>(std::lround(std::sqrt(max_points * aspect))));

@@ -40,6 +40,19 @@ struct KeyframeFootprint {
 // that at most max_points remain); empty with fewer than 10 points.
 KeyframeFootprint StereoFootprint(const KeyframeView& view, int max_points);
 
+// The plane through a keyframe's DVL returns in its top camera frame
+// (least squares with three or four returns, else fronto-parallel at their
+// mean depth): normal . p = offset, the normal pointing away from the
+// camera. False without returns or when the plane is not in front.
+struct CameraPlane {
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();
+  double offset = 0;                                 // m, > 0
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  // the mean of the returns
+  // How far p (camera frame) stands in front of the plane, towards the camera (m).
+  double HeightOf(const Eigen::Vector3d& p) const { return offset - normal.dot(p); }
+};
+bool DvlPlane(const SurveyManifest& manifest, const DvlRecord& dvl, CameraPlane& plane);
+
 // The footprint from the DVL returns (the DVL rides on the camera's servo,
 // so only the mounts place them in the camera frame): the plane through the
 // returns (least squares with three or four, else the fronto-parallel plane

@@ -62,7 +62,14 @@ void LoopOptions::Check() const {
   Require(min_inliers >= 5, "loop_min_inliers", "must be at least 5 (the essential matrix needs 5)");
 }
 
-void TrackOptions::Check() const { Require(min_keyframes >= 2, "min_keyframes", "must be at least 2"); }
+void TrackOptions::Check() const {
+  Require(min_keyframes >= 2, "min_keyframes", "must be at least 2");
+  Require(check_max_keyframes >= 2, "track_check_max_keyframes", "must be at least 2");
+  Require(check_max_height > 0, "track_check_max_height", "must be positive (m)");
+  Require(check_min_height < 0, "track_check_min_height", "must be negative (m)");
+  Require(check_max_reprojection > 0, "track_check_max_reprojection", "must be positive (px)");
+  Require(std::isfinite(check_reprojection_height), "track_check_reprojection_height", "must be finite (m)");
+}
 
 void FrontEndOptions::Check() const {
   detection.Check();

@@ -63,6 +63,20 @@ struct LoopOptions {
 // Tracks across keyframes.
 struct TrackOptions {
   int min_keyframes = 2;  // tracks seen in fewer keyframes are dropped
+  // Height check of tracks without a stereo depth (track_check.h): a wrong
+  // mono match along the epipolar line triangulates exactly, so its point
+  // (triangulated with the navigation prior) is compared with the plane
+  // through the DVL returns of its keyframes. A track of few keyframes whose
+  // point stands farther in front of (or behind) the hull than anything on
+  // it can is dropped.
+  bool check_dvl_height = true;
+  int check_max_keyframes = 3;     // mono tracks in at most this many keyframes are checked
+  double check_max_height = 0.25;  // m: dropped when this far in front of every member's DVL plane (objects: <= 0.2)
+  double check_min_height = -0.1;  // m: ... or this far behind it (inside the hull)
+  // A checked track of three or more keyframes is not exact when one
+  // observation is wrong (its rays meet pairwise at different points):
+  double check_max_reprojection = 8.0;      // px: dropped when the point reprojects this far from a member's feature
+  double check_reprojection_height = 0.05;  // m: ... and stands at least this far in front of the members' planes
   void Check() const;
 };
 

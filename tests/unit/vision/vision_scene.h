@@ -124,9 +124,16 @@ inline void WriteSceneBundle(const VisionScene& s, const std::string& dir, int d
   b.manifest.name = "vision";
   b.nav = s.nav;
   for (std::size_t k = 0; k < s.nav.size(); ++k) {
+    // The DVL's true ranges to the surface (the front end's loop footprints
+    // and track check place the hull with them).
     DvlRecord d;
     d.keyframe = s.nav[k].keyframe;
-    d.range = {1.5, 1.6, 1.7, 1.8};
+    const Pose x_g_d = s.TruePose(k) * Pose::FromVector(s.manifest.camera.servo_to_top).Inverse() *
+                       Pose::FromVector(s.manifest.servo_to_dvl);
+    for (int beam = 0; beam < 4; ++beam) {
+      const auto hit = s.surface.Intersect(x_g_d.translation(), x_g_d.rotation() * s.manifest.BeamDirection(beam));
+      d.range[static_cast<std::size_t>(beam)] = hit ? (*hit - x_g_d.translation()).norm() : std::nan("");
+    }
     b.dvl.push_back(d);
     if (k > 0) b.odometry.push_back({s.nav[k - 1].keyframe, s.nav[k].keyframe, Vector6d::Zero()});
   }
