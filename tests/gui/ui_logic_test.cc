@@ -18,6 +18,7 @@
 #include "ui/controllers/document_controller.h"
 #include "ui/models/pick_details.h"
 #include "ui/session/demo_cache.h"
+#include "ui/session/inspection_parameters.h"
 #include "ui/session/project_file.h"
 
 using namespace hull::ui;
@@ -421,6 +422,31 @@ class UiLogicTest : public QObject {
   }
 
   // --- command line and opened paths ---
+
+  // The front end's DVL height check of mono tracks from the parameter
+  // panel: on by default with the struct's bounds, off and moved bounds
+  // reach FrontEndOptions and the front end's cache key, a bound of the
+  // wrong sign is an error naming its parameter.
+  void trackCheckParametersReachTheFrontEnd() {
+    ParameterValues values = DefaultValues(DefaultParameterTable());
+    const hull::FrontEndOptions defaults = FrontEndOptionsFrom(values);
+    QVERIFY(defaults.tracks.check_dvl_height);
+    QCOMPARE(defaults.tracks.check_max_height, hull::TrackOptions().check_max_height);
+    QCOMPARE(defaults.tracks.check_min_height, hull::TrackOptions().check_min_height);
+    const QString key = FrontEndKey(values);
+    values.insert(QStringLiteral("fe_track_check"), QStringLiteral("off"));
+    values.insert(QStringLiteral("fe_track_check_max_height"), 0.4);
+    values.insert(QStringLiteral("fe_track_check_min_height"), -0.2);
+    const hull::FrontEndOptions changed = FrontEndOptionsFrom(values);
+    QVERIFY(!changed.tracks.check_dvl_height);
+    QCOMPARE(changed.tracks.check_max_height, 0.4);
+    QCOMPARE(changed.tracks.check_min_height, -0.2);
+    QVERIFY(FrontEndKey(values) != key);
+    values.insert(QStringLiteral("fe_track_check_max_height"), -0.1);
+    const std::vector<ParameterError> errors = CheckDefaultParameters(values);
+    QVERIFY(std::any_of(errors.begin(), errors.end(),
+                        [](const ParameterError& e) { return e.key == QLatin1String("fe_track_check_max_height"); }));
+  }
 
   void commandLine() {
     LaunchOptions o = ParseCommandLine({QStringLiteral("--demo")});

@@ -106,6 +106,19 @@ void AddFrontEndFields(ParameterTable& t) {
                       f.temporal.min_inliers, QStringLiteral("A keyframe pair with fewer RANSAC inliers is dropped.")));
   t.push_back(Integer(QStringLiteral("fe_min_keyframes"), kFront, s, QStringLiteral("Min. keyframes per track"), 2,
                       1000, f.tracks.min_keyframes, QStringLiteral("Tracks seen in fewer keyframes are dropped.")));
+  t.push_back(Choice(QStringLiteral("fe_track_check"), kFront, s, QStringLiteral("DVL height check"),
+                     {QStringLiteral("on"), QStringLiteral("off")}, {QStringLiteral("On"), QStringLiteral("Off")},
+                     f.tracks.check_dvl_height ? 0 : 1,
+                     QStringLiteral("Mono tracks of at most three keyframes are checked against the DVL's plane of "
+                                    "the hull: a wrong two-view match triangulates far in front of or behind it.")));
+  t.push_back(Real(QStringLiteral("fe_track_check_max_height"), kFront, s, QStringLiteral("Check: max. in front"), 0.01,
+                   5.0, f.tracks.check_max_height, 3, 0.05, QStringLiteral("m"),
+                   QStringLiteral("A checked track standing farther than this in front of every member's DVL plane is "
+                                  "dropped (foreign objects stand at most about 0.2 m off the hull).")));
+  t.push_back(Real(QStringLiteral("fe_track_check_min_height"), kFront, s, QStringLiteral("Check: max. behind"), -5.0,
+                   -0.001, f.tracks.check_min_height, 3, 0.05, QStringLiteral("m"),
+                   QStringLiteral("A checked track standing farther than this behind every member's DVL plane (inside "
+                                  "the hull) is dropped; negative.")));
 }
 
 // The photomosaic (core/mosaic/photomosaic.h): used by the next Inspection >
@@ -334,6 +347,10 @@ FrontEndOptions FrontEndOptionsFrom(const ParameterValues& values) {
   real("fe_ransac_threshold", o.temporal.ransac_threshold);
   integer("fe_min_inliers", o.temporal.min_inliers);
   integer("fe_min_keyframes", o.tracks.min_keyframes);
+  o.tracks.check_dvl_height =
+      values.value(QStringLiteral("fe_track_check"), QStringLiteral("on")).toString() != QLatin1String("off");
+  real("fe_track_check_max_height", o.tracks.check_max_height);
+  real("fe_track_check_min_height", o.tracks.check_min_height);
   return o;
 }
 
