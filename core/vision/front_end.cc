@@ -138,11 +138,20 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   // 2b. Loop closures: pairs far apart in nav order whose footprints overlap
   // under the prior, matched with a window and tolerances grown by the
   // navigation drift between them.
+  // Each keyframe's DVL record (null: none), for the loop footprints and
+  // the mono track check.
+  std::vector<const DvlRecord*> dvl_of(n, nullptr);
+  {
+    std::unordered_map<std::int64_t, const DvlRecord*> by_keyframe;
+    for (const DvlRecord& d : bundle.dvl) by_keyframe.emplace(d.keyframe, &d);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto d = by_keyframe.find(views[i].keyframe);
+      if (d != by_keyframe.end()) dvl_of[i] = d->second;
+    }
+  }
   if (o.loops.enabled) {
     const auto l0 = std::chrono::steady_clock::now();
     progress.Update(0.85, "looking for loop closures");
-    std::unordered_map<std::int64_t, const DvlRecord*> dvl_of;
-    for (const DvlRecord& d : bundle.dvl) dvl_of.emplace(d.keyframe, &d);
     std::vector<LoopKeyframe> lk(n);
     double path = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -157,10 +166,7 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
       LoopKeyframe& k = lk[i];
       k.order = static_cast<int>(w);
       k.footprint = StereoFootprint(views[i], o.loops.footprint_points);
-      if (k.footprint.empty()) {
-        const auto d = dvl_of.find(views[i].keyframe);
-        if (d != dvl_of.end()) k.footprint = DvlFootprint(man, *d->second, o.loops.footprint_points);
-      }
+      if (k.footprint.empty() && dvl_of[i]) k.footprint = DvlFootprint(man, *dvl_of[i], o.loops.footprint_points);
       PlaceFootprint(k.footprint, k.x_g_cT);
     }
     const std::vector<LoopCandidate> candidates =
@@ -232,13 +238,10 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
       has_stereo[i].assign(views[i].top.size(), 0);
       for (const StereoMatch& s : views[i].stereo) has_stereo[i][static_cast<std::size_t>(s.top)] = 1;
     }
-    std::unordered_map<std::int64_t, const DvlRecord*> dvl_of;
-    for (const DvlRecord& d : bundle.dvl) dvl_of.emplace(d.keyframe, &d);
     std::vector<std::optional<CameraPlane>> planes(n);
     for (std::size_t i = 0; i < n; ++i) {
-      const auto d = dvl_of.find(views[i].keyframe);
       CameraPlane plane;
-      if (d != dvl_of.end() && DvlPlane(man, *d->second, plane)) planes[i] = plane;
+      if (dvl_of[i] && DvlPlane(man, *dvl_of[i], plane)) planes[i] = plane;
     }
     r.track_checks = CheckTrackHeights(tracks, views, has_stereo, planes, rig, o.tracks, o.threads);
     std::vector<char> keep(tracks.size(), 1);
