@@ -61,12 +61,12 @@ std::pair<int, double> PointIndex::NearestOne(const Eigen::Vector3d& q) const {
   return {static_cast<int>(index), d2};
 }
 
-std::vector<std::pair<int, double>> PointIndex::Within(const Eigen::Vector3d& q, double radius) const {
+std::vector<std::pair<int, double>> PointIndex::Within(const Eigen::Vector3d& q, double radius, bool sorted) const {
   std::vector<std::pair<int, double>> out;
   if (!(radius >= 0) || impl_->cloud.pts.empty()) return out;
   std::vector<std::pair<std::uint32_t, double>> matches;
   // nanoflann's L2_Simple metric works on squared distances.
-  impl_->tree.radiusSearch(q.data(), radius * radius, matches, nanoflann::SearchParams(32, 0.0f, true));
+  impl_->tree.radiusSearch(q.data(), radius * radius, matches, nanoflann::SearchParams(32, 0.0f, sorted));
   out.reserve(matches.size());
   for (const auto& [i, d2] : matches) {
     if (d2 <= radius * radius) out.emplace_back(static_cast<int>(i), d2);

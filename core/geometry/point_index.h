@@ -25,8 +25,9 @@ class PointIndex {
   // The nearest point and its squared distance, without allocating;
   // (-1, infinity) when the index is empty.
   std::pair<int, double> NearestOne(const Eigen::Vector3d& q) const;
-  // Indices of all points within radius (not squared), nearest first.
-  std::vector<std::pair<int, double>> Within(const Eigen::Vector3d& q, double radius) const;
+  // Indices of all points within radius (not squared), nearest first, or in
+  // the tree's order when not `sorted` (saves the sort of a large result).
+  std::vector<std::pair<int, double>> Within(const Eigen::Vector3d& q, double radius, bool sorted = true) const;
 
  private:
   struct Impl;

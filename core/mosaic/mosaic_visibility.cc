@@ -1,7 +1,7 @@
 // The photomosaic's visibility stage (photomosaic_internal.h): which views
 // see which faces. The rule is per (view, face) pair; what makes it fast is
-// which pairs are looked at: only the faces whose centroid lies in the
-// grid cells a view's range ball touches, and of those only the ones whose
+// which pairs are looked at: only the faces whose centroid lies in a view's
+// range ball (a k-d tree's radius search), and of those only the ones whose
 // centroid the view's pinhole frustum holds get their corners projected
 // and their rays cast. Both culls are conservative, so the result is the
 // rule applied to every pair (tests/unit/mosaic: SeenFacesEqualsTheRuleOnEveryPair).
@@ -10,33 +10,13 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <memory>
-#include <stdexcept>
 
+#include "geometry/point_index.h"
 #include "mosaic/photomosaic_internal.h"
 
 namespace hull {
 namespace mosaic_internal {
-namespace {
-
-constexpr int kBits = 21;  // per axis in a cell key
-constexpr std::int64_t kMaxCell = (std::int64_t{1} << kBits) - 1;
-
-std::uint64_t Key(std::int64_t x, std::int64_t y, std::int64_t z) {
-  return static_cast<std::uint64_t>(x) << (2 * kBits) | static_cast<std::uint64_t>(y) << kBits |
-         static_cast<std::uint64_t>(z);
-}
-
-// The cell index of a coordinate, clamped to the key's range.
-std::int64_t CellOf(double x, double origin, double cell) {
-  const double i = std::floor((x - origin) / cell);
-  if (!(i > 0)) return 0;  // and NaN
-  return static_cast<std::int64_t>(std::min(i, static_cast<double>(kMaxCell)));
-}
-
-}  // namespace
-
 std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f) {
   const Face& F = m.faces[static_cast<std::size_t>(f)];
   const Eigen::Vector3d a = m.vertices[static_cast<std::size_t>(F[0])], b = m.vertices[static_cast<std::size_t>(F[1])],
@@ -45,74 +25,23 @@ std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f) 
   return {g, g + 0.85 * (a - g), g + 0.85 * (b - g), g + 0.85 * (c - g)};
 }
 
-CentroidGrid::CentroidGrid(const std::vector<Eigen::Vector3d>& centroids, double cell) : cell_(cell) {
-  if (!(cell > 0)) throw std::invalid_argument("CentroidGrid: the cell size must be positive");
-  // A centroid that is not finite is never within range of anything: left out.
-  origin_ = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector3d hi = -origin_;
-  for (const Eigen::Vector3d& g : centroids) {
-    if (g.allFinite()) origin_ = origin_.cwiseMin(g), hi = hi.cwiseMax(g);
-  }
-  if (!origin_.allFinite()) origin_.setZero(), hi.setZero();
-  // Grow the cell until the extent fits the key (a model kilometres across).
-  while ((hi - origin_).maxCoeff() / cell_ >= static_cast<double>(kMaxCell)) cell_ *= 2;
-  std::vector<std::pair<std::uint64_t, int>> keyed;
-  keyed.reserve(centroids.size());
-  for (std::size_t f = 0; f < centroids.size(); ++f) {
-    const Eigen::Vector3d& g = centroids[f];
-    if (!g.allFinite()) continue;
-    keyed.emplace_back(
-        Key(CellOf(g.x(), origin_.x(), cell_), CellOf(g.y(), origin_.y(), cell_), CellOf(g.z(), origin_.z(), cell_)),
-        static_cast<int>(f));
-  }
-  std::sort(keyed.begin(), keyed.end());
-  order_.resize(keyed.size());
-  for (std::size_t i = 0; i < keyed.size(); ++i) {
-    order_[i] = keyed[i].second;
-    if (i == 0 || keyed[i].first != keyed[i - 1].first) cells_[keyed[i].first] = {i, i};
-    cells_[keyed[i].first].second = i + 1;
-  }
-}
-
-void CentroidGrid::Near(const Eigen::Vector3d& c, double r, std::vector<int>* faces) const {
-  // A little slack (a millionth of a cell) against rounding at the cell borders.
-  const double slack = 1e-6 * cell_;
-  std::int64_t lo[3], hi[3];
-  for (int a = 0; a < 3; ++a) {
-    lo[a] = CellOf(c[a] - r - slack, origin_[a], cell_);
-    hi[a] = CellOf(c[a] + r + slack, origin_[a], cell_);
-  }
-  const double r2 = (r + slack) * (r + slack);
-  for (std::int64_t x = lo[0]; x <= hi[0]; ++x) {
-    for (std::int64_t y = lo[1]; y <= hi[1]; ++y) {
-      for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-        // Distance from c to the cell's box (grown by the slack).
-        const Eigen::Vector3d box_lo =
-            origin_ + cell_ * Eigen::Vector3d(static_cast<double>(x), static_cast<double>(y), static_cast<double>(z));
-        double d2 = 0;
-        for (int a = 0; a < 3; ++a) {
-          const double below = box_lo[a] - slack - c[a], above = c[a] - (box_lo[a] + cell_ + slack);
-          const double out = std::max({below, above, 0.0});
-          d2 += out * out;
-        }
-        if (d2 > r2) continue;
-        const auto it = cells_.find(Key(x, y, z));
-        if (it == cells_.end()) continue;
-        faces->insert(faces->end(), order_.begin() + static_cast<std::ptrdiff_t>(it->second.first),
-                      order_.begin() + static_cast<std::ptrdiff_t>(it->second.second));
-      }
-    }
-  }
-}
-
 Visibility SeenFaces(const TriangleMesh& model, const MeshIndex& index, const std::vector<MosaicCamera>& cameras,
                      int width, int height, const MosaicOptions& options, Progress& progress) {
   const std::size_t nf = model.num_faces();
   std::vector<Eigen::Vector3d> centroid(nf);
   for (std::size_t f = 0; f < nf; ++f) centroid[f] = model.FaceCentroid(static_cast<int>(f));
-  // Cells a quarter of the range: a view's ball touches at most 9^3 of them,
-  // and their corners add little volume to it.
-  const CentroidGrid grid(centroid, options.max_range / 4);
+  // A k-d tree of the finite centroids (a degenerate face's is never within
+  // range of anything); `face_of` maps the tree's points back to faces.
+  std::vector<Eigen::Vector3d> finite;
+  std::vector<int> face_of;
+  finite.reserve(nf);
+  face_of.reserve(nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    if (!centroid[f].allFinite()) continue;
+    finite.push_back(centroid[f]);
+    face_of.push_back(static_cast<int>(f));
+  }
+  const PointIndex near_index(std::move(finite));
   const double cos_max = std::cos(options.max_incidence_deg * M_PI / 180.0);
   const double margin = options.image_margin;
   const int nviews = static_cast<int>(cameras.size());
@@ -125,12 +54,13 @@ Visibility SeenFaces(const TriangleMesh& model, const MeshIndex& index, const st
     const Eigen::Vector3d o = cam.centre();
     const Eigen::Matrix3d Rt = cam.x_Mc().rotation().transpose();
     const PinholeIntrinsics& k = cam.intrinsics();
-    std::vector<int> faces;
-    grid.Near(o, options.max_range, &faces);
+    // In the tree's order: `pass` is sorted by face below.
+    const std::vector<std::pair<int, double>> faces = near_index.Within(o, options.max_range, false);
     std::vector<std::pair<int, float>> pass;
     std::vector<Eigen::Vector3d> points;
     std::size_t tested = 0;
-    for (const int fi : faces) {
+    for (const auto& in_range : faces) {
+      const int fi = face_of[static_cast<std::size_t>(in_range.first)];
       const auto f = static_cast<std::size_t>(fi);
       const Eigen::Vector3d& g = centroid[f];
       const Eigen::Vector3d to = o - g;

@@ -13,7 +13,6 @@
 #include <functional>
 #include <map>
 #include <opencv2/core/mat.hpp>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -41,24 +40,6 @@ struct Candidate {
 // counts as seen only when all four are.
 std::array<Eigen::Vector3d, kSamples> FaceSamples(const TriangleMesh& m, int f);
 
-// Face centroids binned in a uniform grid of cubes (a hash of the occupied
-// cells): the faces whose centroid may lie within a radius of a point,
-// without touching the others.
-class CentroidGrid {
- public:
-  CentroidGrid(const std::vector<Eigen::Vector3d>& centroids, double cell);
-  // Appends every face whose centroid lies within r of c, and others of the
-  // cells the ball touches (a superset), cell by cell.
-  void Near(const Eigen::Vector3d& c, double r, std::vector<int>* faces) const;
-  double cell() const { return cell_; }
-
- private:
-  double cell_;
-  Eigen::Vector3d origin_;
-  std::vector<int> order_;                                                        // faces by cell
-  std::unordered_map<std::uint64_t, std::pair<std::size_t, std::size_t>> cells_;  // key -> [begin, end) of order_
-};
-
 // The candidate rule for view v and face f: the centroid within max_range
 // of the camera centre, the face turned toward it within max_incidence_deg,
 // all three corners image_margin inside the width x height image (in front
@@ -67,7 +48,7 @@ class CentroidGrid {
 // score = cos(incidence) / distance^2.
 struct Visibility {
   std::vector<std::vector<std::pair<int, float>>> seen;  // per view: (face, score), in face order
-  std::size_t near = 0;       // (view, face) pairs the grid returned (centroid in cells of the range ball)
+  std::size_t near = 0;                                  // (view, face) pairs with the centroid within the range
   std::size_t projected = 0;  // pairs in range, frontal, centroid in the frustum: corners projected
   std::size_t rays = 0;       // rays cast (four per pair with its corners in the image)
 };

@@ -626,6 +626,12 @@ TEST(PointIndex, NearestAndWithinMatchBruteForce) {
         EXPECT_LE(within[k - 1].second, within[k].second);
       }
     }
+    // Unsorted: the same points with the same distances, in any order.
+    auto unsorted = index.Within(q, r, false);
+    std::sort(unsorted.begin(), unsorted.end());
+    auto sorted_by_index = within;
+    std::sort(sorted_by_index.begin(), sorted_by_index.end());
+    EXPECT_EQ(unsorted, sorted_by_index);
   }
   EXPECT_EQ(index.Nearest(Vector3d::Zero(), 5000).size(), pts.size());
   EXPECT_TRUE(index.Nearest(Vector3d::Zero(), 0).empty());

@@ -367,35 +367,6 @@ TEST(Mosaic, SeenFacesEqualsTheRuleOnEveryPair) {
   EXPECT_EQ(vis.rays, 4 * (candidates + static_cast<std::size_t>(rejected[3])));
 }
 
-TEST(Mosaic, CentroidGridFindsEveryCentroidInTheBall) {
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-20, 20);
-  std::vector<Eigen::Vector3d> g(5000);
-  for (auto& p : g) p = Eigen::Vector3d(u(rng), u(rng), 0.1 * u(rng));
-  g[17].x() = std::numeric_limits<double>::quiet_NaN();  // a degenerate face: never near anything
-  const mosaic_internal::CentroidGrid grid(g, 1.25);
-  for (int q = 0; q < 200; ++q) {
-    const Eigen::Vector3d c(u(rng), u(rng), u(rng) * 0.1);
-    const double r = 0.5 + std::abs(u(rng)) / 4;
-    std::vector<int> near;
-    grid.Near(c, r, &near);
-    std::sort(near.begin(), near.end());
-    EXPECT_TRUE(std::adjacent_find(near.begin(), near.end()) == near.end()) << "a face twice";
-    EXPECT_FALSE(std::binary_search(near.begin(), near.end(), 17));
-    for (std::size_t f = 0; f < g.size(); ++f) {
-      if ((g[f] - c).norm() <= r) {
-        EXPECT_TRUE(std::binary_search(near.begin(), near.end(), static_cast<int>(f))) << "face " << f;
-      }
-    }
-    EXPECT_LT(near.size(), g.size() / 4);
-  }
-  // A point exactly on a cell border and a radius reaching it exactly.
-  const mosaic_internal::CentroidGrid line({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(2.5, 0, 0)}, 1.25);
-  std::vector<int> near;
-  line.Near(Eigen::Vector3d(0, 0, 0), 2.5, &near);
-  EXPECT_EQ(near.size(), 2u);
-}
-
 // ---- A small rendered survey.
 
 struct RenderedSurvey {
