@@ -101,50 +101,51 @@ vtkSmartPointer<vtkPolyData> PointCloudPolyData(const std::vector<Eigen::Vector3
   return poly;
 }
 
-vtkSmartPointer<vtkPolyData> LandmarksPolyData(const std::vector<LandmarkMarker>& landmarks) {
+namespace {
+
+constexpr unsigned char kOnHull[3] = {40, 200, 60}, kForeign[3] = {230, 40, 40}, kNoTruth[3] = {200, 200, 200};
+
+// Landmarks as vertices with a "label_rgb" colour and their "deviation":
+// `colour(i)` and `deviation(i)` for the i-th of n points.
+template <class Position, class Colour, class Deviation>
+vtkSmartPointer<vtkPolyData> LabelledPoints(std::size_t n, Position position, Colour colour, Deviation deviation) {
   std::vector<Eigen::Vector3d> positions;
-  positions.reserve(landmarks.size());
-  for (const LandmarkMarker& l : landmarks) positions.push_back(l.position);
+  positions.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) positions.push_back(position(i));
   auto poly = PointCloudPolyData(positions);
   vtkNew<vtkUnsignedCharArray> rgb;
   rgb->SetName("label_rgb");
   rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
-  vtkNew<vtkDoubleArray> deviation;
-  deviation->SetName("deviation");
-  deviation->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
-  for (std::size_t i = 0; i < landmarks.size(); ++i) {
-    const LandmarkMarker& l = landmarks[i];
-    const unsigned char green[3] = {40, 200, 60}, red[3] = {230, 40, 40}, grey[3] = {200, 200, 200};
-    const unsigned char* c = !l.has_truth ? grey : (l.foreign() ? red : green);
-    rgb->SetTypedTuple(static_cast<vtkIdType>(i), c);
-    deviation->SetValue(static_cast<vtkIdType>(i), l.deviation);
+  rgb->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  vtkNew<vtkDoubleArray> dev;
+  dev->SetName("deviation");
+  dev->SetNumberOfTuples(static_cast<vtkIdType>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    rgb->SetTypedTuple(static_cast<vtkIdType>(i), colour(i));
+    dev->SetValue(static_cast<vtkIdType>(i), deviation(i));
   }
   poly->GetPointData()->AddArray(rgb);
-  poly->GetPointData()->AddArray(deviation);
+  poly->GetPointData()->AddArray(dev);
   return poly;
 }
 
+}  // namespace
+
+vtkSmartPointer<vtkPolyData> LandmarksPolyData(const std::vector<LandmarkMarker>& landmarks) {
+  return LabelledPoints(
+      landmarks.size(), [&](std::size_t i) { return landmarks[i].position; },
+      [&](std::size_t i) {
+        const LandmarkMarker& l = landmarks[i];
+        return !l.has_truth ? kNoTruth : (l.foreign() ? kForeign : kOnHull);
+      },
+      [&](std::size_t i) { return landmarks[i].deviation; });
+}
+
 vtkSmartPointer<vtkPolyData> AdjustedLandmarksPolyData(const std::vector<AdjustedLandmark>& landmarks) {
-  std::vector<Eigen::Vector3d> positions;
-  positions.reserve(landmarks.size());
-  for (const AdjustedLandmark& l : landmarks) positions.push_back(l.position);
-  auto poly = PointCloudPolyData(positions);
-  vtkNew<vtkUnsignedCharArray> rgb;
-  rgb->SetName("label_rgb");
-  rgb->SetNumberOfComponents(3);
-  rgb->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
-  vtkNew<vtkDoubleArray> deviation;
-  deviation->SetName("deviation");
-  deviation->SetNumberOfTuples(static_cast<vtkIdType>(landmarks.size()));
-  for (std::size_t i = 0; i < landmarks.size(); ++i) {
-    const unsigned char green[3] = {40, 200, 60}, red[3] = {230, 40, 40};
-    rgb->SetTypedTuple(static_cast<vtkIdType>(i), landmarks[i].label == 1 ? green : red);
-    deviation->SetValue(static_cast<vtkIdType>(i), landmarks[i].deviation);
-  }
-  poly->GetPointData()->AddArray(rgb);
-  poly->GetPointData()->AddArray(deviation);
-  return poly;
+  return LabelledPoints(
+      landmarks.size(), [&](std::size_t i) { return landmarks[i].position; },
+      [&](std::size_t i) { return landmarks[i].label == 1 ? kOnHull : kForeign; },
+      [&](std::size_t i) { return landmarks[i].deviation; });
 }
 
 vtkSmartPointer<vtkPolyData> SlabPolyData(const SlabBox& slab) {
