@@ -80,8 +80,8 @@ ObjectScore ScoreObjects(const PipelineInputs& in, const PipelineResult& r, cons
   const std::set<std::string> false_ids(found.false_objects.begin(), found.false_objects.end());
   for (const DetectedObject& d : m.objects) {
     if (!false_ids.count(d.id)) continue;
-    std::printf("    false object %s: max %.3f m, area %.4f m^2, %d features\n", d.id.c_str(), d.max_height, d.area,
-                d.num_features);
+    std::printf("    false object %s: max %.3f m, area %.4f m^2, %d features, %.2f m from the bow\n", d.id.c_str(),
+                d.max_height, d.area, d.num_features, d.distance_from_bow);
   }
   return s;
 }

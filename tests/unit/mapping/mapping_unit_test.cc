@@ -219,6 +219,72 @@ TEST(ShapeDetection, HysteresisShapesANarrowLumpOverItsFootprintAndALowOneNot) {
   EXPECT_EQ(DetectShapes(in, 0, on).shapes.size(), 2u);
 }
 
+// One keyframe sees the hull (a 4 cm grid of features on the CAD, 1 m in
+// front of the camera) and the top of a narrow peak, 0.17 m high, and none
+// of the peak's flanks; another keyframe saw a second feature of the peak
+// 3 cm away (`other` high).
+MappingInput LonePeak(double other) {
+  MappingInput in;
+  MappingKeyframe kf, second;
+  kf.id = 1;
+  second.id = 2;
+  auto add = [&](const Eigen::Vector2d& xy, double d, MappingKeyframe& k) {
+    MappingLandmark l;
+    l.id = static_cast<std::int64_t>(in.landmarks.size());
+    l.p_g = Eigen::Vector3d(xy.x(), xy.y(), 1.0 - d);
+    l.deviation = d;
+    k.landmarks.push_back(static_cast<int>(in.landmarks.size()));
+    in.landmarks.push_back(l);
+  };
+  for (int j = -5; j <= 5; ++j) {
+    for (int i = -5; i <= 5; ++i) {
+      if (i != 0 || j != 0) add(Eigen::Vector2d(0.04 * i, 0.04 * j), 0.0, kf);
+    }
+  }
+  add(Eigen::Vector2d(0.0, 0.0), 0.17, kf);
+  add(Eigen::Vector2d(0.03, 0.0), other, second);
+  in.keyframes.push_back(kf);
+  in.keyframes.push_back(second);
+  return in;
+}
+
+TEST(ShapeDetection, ALonePeakConfirmedByAnotherFeatureIsShapedWithTheHullAroundIt) {
+  MappingOptions o;
+  o.tau = 0.06;
+  ASSERT_TRUE(o.fusion_keep_peaks);
+  ASSERT_LT(o.shape_grow_height, o.tau);
+  const auto peak_cluster = [](const KeyframeShapes& k) {
+    for (const ShapePoint& p : k.points) {
+      if (p.deviation > 0.1) return p.cluster;
+    }
+    return ShapePoint::kBelowTau;
+  };
+  // Confirmed (0.155 m, 3 cm away): one shape, the peak and the hull within
+  // eps of it, nothing farther.
+  const MappingInput confirmed = LonePeak(0.155);
+  const KeyframeShapes k = DetectShapes(confirmed, 0, o);
+  ASSERT_EQ(k.shapes.size(), 1u);
+  EXPECT_GE(peak_cluster(k), 0);
+  const DetectedShape& s = k.shapes[0];
+  EXPECT_NEAR(*std::max_element(s.deviation.begin(), s.deviation.end()), 0.17, 1e-12);
+  EXPECT_GE(s.points.size(), 5u);
+  for (const Eigen::Vector3d& v : s.vertices_g) EXPECT_LE(v.head<2>().norm(), o.dbscan_eps + 1e-9);
+  // One wrong match alone (nothing else above tau near it), or a neighbour
+  // more than 3 cm lower: noise, no shape, as before.
+  for (const double other : {0.0, 0.12}) {
+    const KeyframeShapes lone = DetectShapes(LonePeak(other), 0, o);
+    EXPECT_TRUE(lone.shapes.empty()) << other;
+    EXPECT_EQ(peak_cluster(lone), DbscanResult::kNoise) << other;
+  }
+  // Without the peak points (the paper's fusion) or without the hysteresis: noise.
+  MappingOptions mean = o;
+  mean.fusion_keep_peaks = false;
+  EXPECT_TRUE(DetectShapes(confirmed, 0, mean).shapes.empty());
+  MappingOptions paper = o;
+  paper.shape_grow_height = paper.tau;
+  EXPECT_TRUE(DetectShapes(confirmed, 0, paper).shapes.empty());
+}
+
 // ---- alpha shapes -----------------------------------------------------------------
 
 double Area(const std::vector<Eigen::Vector2d>& p, const std::vector<Face>& tris) {
