@@ -78,15 +78,19 @@ HI_NOISE_INLINE void SurfaceAlbedo::Layers(const float* px, const float* py, con
                                            int m, float (&layer)[4][kLanes]) const {
   for (auto& row : layer) std::fill(row, row + kLanes, 0.0f);
   NoiseLattice L;
-  float xs[kLanes], ys[kLanes], zs[kLanes], w[kLanes], cw[kLanes];
+  float xs[kLanes], ys[kLanes], zs[kLanes], w[kLanes], cw[kLanes], inv[kLanes];
+  // Octave weights from the reciprocal footprints (one division per point,
+  // not per octave); the finest footprint decides where the octaves end.
+  float finest = footprint[0];
+  for (int i = 0; i < m; ++i) {
+    inv[i] = 1.0f / footprint[i];  // +inf for footprint 0: every octave
+    finest = std::min(finest, footprint[i]);
+  }
+  const float inv_finest = 1.0f / finest;
   float wavelength = kCoarsest;
   for (int k = 0; k < kOctaves; ++k, wavelength *= 0.5f) {
-    float any = 0;
-    for (int i = 0; i < m; ++i) {
-      w[i] = OctaveWeight(wavelength, footprint[i]);
-      any = std::max(any, w[i]);
-    }
-    if (any == 0) break;  // finer octaves fade earlier still
+    if (OctaveWeightOfRatio(wavelength * inv_finest) == 0) break;  // finer octaves fade earlier still
+    for (int i = 0; i < m; ++i) w[i] = OctaveWeightOfRatio(wavelength * inv[i]);
     const float s = 1.0f / wavelength, off = 17.31f * static_cast<float>(k);
     for (int i = 0; i < m; ++i) {
       xs[i] = px[i] * s + off;
