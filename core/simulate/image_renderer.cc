@@ -338,7 +338,7 @@ cv::Mat UnderwaterCamera::Render(const TrueScene& scene, const Pose& x_Mc, std::
           }
         }
       }
-      // Geometry of the hits; albedo: hull pixels in one batch (vectorised),
+      // Geometry of the hits; albedo: hull pixels in one batch along the row (vectorised),
       // object pixels one by one.
       int nb = 0;  // hull hits in the albedo batch
       for (std::size_t i = 0; i < M; ++i) {
@@ -372,8 +372,8 @@ cv::Mat UnderwaterCamera::Render(const TrueScene& scene, const Pose& x_Mc, std::
         bnz[b] = n.z();
         bfp[b] = footprint;
       }
-      scene.albedo().HullBatch(bx.data(), by.data(), bz.data(), bnx.data(), bny.data(), bnz.data(), bfp.data(), nb,
-                               batch_out.data());
+      scene.albedo().HullRow(bx.data(), by.data(), bz.data(), bnx.data(), bny.data(), bnz.data(), bfp.data(), nb,
+                             batch_out.data());
       for (std::size_t k = 0; k < static_cast<std::size_t>(nb); ++k) {
         halbedo[static_cast<std::size_t>(hull_hits[k])] = batch_out[k];
       }
