@@ -308,7 +308,9 @@ cv::Mat UnderwaterCamera::Render(const TrueScene& scene, const Pose& x_Mc, std::
     // The hit pixels of a row, structure of arrays.
     std::vector<int> hit_u(W);
     std::vector<float> hdx(W), hdy(W), hdz(W), ht(W), hnx(W), hny(W), hnz(W), halbedo(W), hlit(W * ns), hrad(W);
-    std::vector<int> hull_hits(W);
+    std::vector<int> hull_hits(W), object_hits(W);
+    std::vector<const TrueObject*> objects(W);
+    std::vector<float> ox(W), oy(W), oz(W), onx(W), ony(W), onz(W), ofp(W);
     std::vector<float> bx(W), by(W), bz(W), bnx(W), bny(W), bnz(W), bfp(W), batch_out(W);
     for (int v = rows.begin(); v != rows.end(); ++v) {
       const double y = (v - intrinsics_.cy) / intrinsics_.fy;
@@ -338,9 +340,9 @@ cv::Mat UnderwaterCamera::Render(const TrueScene& scene, const Pose& x_Mc, std::
           }
         }
       }
-      // Geometry of the hits; albedo: hull pixels in one batch along the row (vectorised),
-      // object pixels one by one.
-      int nb = 0;  // hull hits in the albedo batch
+      // Geometry of the hits; albedo: hull pixels in one batch along the row,
+      // object pixels in another (both vectorised).
+      int nb = 0, no = 0;  // hull and object hits in the albedo batches
       for (std::size_t i = 0; i < M; ++i) {
         const std::size_t u = static_cast<std::size_t>(hit_u[i]);
         const RayHit& h = hits[u];
@@ -359,7 +361,16 @@ cv::Mat UnderwaterCamera::Render(const TrueScene& scene, const Pose& x_Mc, std::
         hny[i] = n.y();
         hnz[i] = n.z();
         if (const TrueObject* object = scene.ObjectOfFace(h.face)) {
-          halbedo[i] = scene.albedo().OnObject(*object, p, n, footprint);
+          const std::size_t o = static_cast<std::size_t>(no++);
+          object_hits[o] = static_cast<int>(i);
+          objects[o] = object;
+          ox[o] = p.x();
+          oy[o] = p.y();
+          oz[o] = p.z();
+          onx[o] = n.x();
+          ony[o] = n.y();
+          onz[o] = n.z();
+          ofp[o] = footprint;
           continue;
         }
         const std::size_t b = static_cast<std::size_t>(nb++);
@@ -376,6 +387,11 @@ cv::Mat UnderwaterCamera::Render(const TrueScene& scene, const Pose& x_Mc, std::
                              batch_out.data());
       for (std::size_t k = 0; k < static_cast<std::size_t>(nb); ++k) {
         halbedo[static_cast<std::size_t>(hull_hits[k])] = batch_out[k];
+      }
+      scene.albedo().ObjectBatch(objects.data(), ox.data(), oy.data(), oz.data(), onx.data(), ony.data(), onz.data(),
+                                 ofp.data(), no, batch_out.data());
+      for (std::size_t k = 0; k < static_cast<std::size_t>(no); ++k) {
+        halbedo[static_cast<std::size_t>(object_hits[k])] = batch_out[k];
       }
       // Strobe light, in single precision relative to the camera centre.
       ShadeHits(hdx.data(), hdy.data(), hdz.data(), ht.data(), hnx.data(), hny.data(), hnz.data(), halbedo.data(),

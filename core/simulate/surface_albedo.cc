@@ -312,12 +312,10 @@ float SurfaceAlbedo::OnHull(const Eigen::Vector3f& p, const Eigen::Vector3f& n, 
   return out;
 }
 
-float SurfaceAlbedo::Fouling(const Eigen::Vector3f& p, float footprint) const {
+float SurfaceAlbedo::Fouling(const Eigen::Vector3f& p, float footprint, const float (&layer)[4]) const {
   // Barnacle-like shells on a dark weed film: a cellular pattern, one shell
   // per 16 mm cell at a random spot, radius 4.5-8 mm, a dark opening.
   constexpr float kCell = 0.016f;
-  float layer[4];
-  Layers(p, footprint, layer);
   const float film = 0.11f + 0.25f * layer[kTone] + 0.15f * layer[kGrain];
   const float detail = OctaveWeight(kCell, footprint);
   if (detail == 0) return std::clamp(film + 0.1f, 0.03f, 0.9f);
@@ -352,10 +350,31 @@ float SurfaceAlbedo::Fouling(const Eigen::Vector3f& p, float footprint) const {
 
 float SurfaceAlbedo::OnObject(const TrueObject& object, const Eigen::Vector3f& p, const Eigen::Vector3f& n,
                               float footprint) const {
-  const SurfaceMaterial material = MaterialOf(object.kind);
-  if (material == SurfaceMaterial::kFouling) return Fouling(p, footprint);
   float layer[4];
   Layers(p, footprint, layer);
+  return ObjectFromLayers(object, p, n, footprint, layer);
+}
+
+void SurfaceAlbedo::ObjectBatch(const TrueObject* const* objects, const float* px, const float* py, const float* pz,
+                                const float* nx, const float* ny, const float* nz, const float* footprint, int n,
+                                float* out) const {
+  float batch[4][kLanes];
+  for (int base = 0; base < n; base += kLanes) {
+    const int m = std::min(kLanes, n - base);
+    Layers(px + base, py + base, pz + base, footprint + base, m, batch);
+    for (int k = 0; k < m; ++k) {
+      const int i = base + k;
+      const float layer[4] = {batch[0][k], batch[1][k], batch[2][k], batch[3][k]};
+      out[i] = ObjectFromLayers(*objects[i], Eigen::Vector3f(px[i], py[i], pz[i]), Eigen::Vector3f(nx[i], ny[i], nz[i]),
+                                footprint[i], layer);
+    }
+  }
+}
+
+float SurfaceAlbedo::ObjectFromLayers(const TrueObject& object, const Eigen::Vector3f& p, const Eigen::Vector3f& n,
+                                      float footprint, const float (&layer)[4]) const {
+  const SurfaceMaterial material = MaterialOf(object.kind);
+  if (material == SurfaceMaterial::kFouling) return Fouling(p, footprint, layer);
   const Eigen::Vector3f axis = object.normal.cast<float>().normalized();
   const Eigen::Vector3f e1 = Perpendicular(axis), e2 = axis.cross(e1);
   const Eigen::Vector3f r = p - object.center.cast<float>();

@@ -43,6 +43,11 @@ class SurfaceAlbedo {
   }
   float OnHull(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float footprint) const;
   float OnObject(const TrueObject& object, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float footprint) const;
+  // OnObject for n points at once (objects[i]: point i's object; positions,
+  // normals, footprints as in HullBatch); the same values, the shared
+  // texture layers computed kLanes points at a time.
+  void ObjectBatch(const TrueObject* const* objects, const float* px, const float* py, const float* pz, const float* nx,
+                   const float* ny, const float* nz, const float* footprint, int n, float* out) const;
   // OnHull for n points at once (structure of arrays: positions, normals,
   // footprints), about four times faster per point; the same values.
   void HullBatch(const float* px, const float* py, const float* pz, const float* nx, const float* ny, const float* nz,
@@ -76,7 +81,9 @@ class SurfaceAlbedo {
   // (coarse[4]) of the m points, else computed.
   void HullChunk(const float* px, const float* py, const float* pz, const float* nx, const float* ny, const float* nz,
                  const float* footprint, int m, const float* const* coarse, float* out) const;
-  float Fouling(const Eigen::Vector3f& p, float footprint) const;
+  float ObjectFromLayers(const TrueObject& object, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float footprint,
+                         const float (&layer)[4]) const;
+  float Fouling(const Eigen::Vector3f& p, float footprint, const float (&layer)[4]) const;
 
   std::uint64_t seed_;
   Eigen::Vector3d forward_, up_;

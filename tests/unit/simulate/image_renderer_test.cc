@@ -252,5 +252,43 @@ TEST(SurfaceAlbedoRow, InterpolatedCoarseTextureStaysCloseToTheExactAlbedo) {
   }
 }
 
+// The object albedo in batches (as the renderer shades object pixels) is
+// exactly the one-point albedo, for every material, at several footprints.
+TEST(SurfaceAlbedoRow, ObjectBatchIsTheOnePointAlbedo) {
+  const SurfaceAlbedo albedo(5, Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitZ());
+  std::vector<TrueObject> kinds(3);
+  kinds[0].kind = ObjectKind::kPatch;
+  kinds[1].kind = ObjectKind::kCylinder;
+  kinds[2].kind = ObjectKind::kBox;
+  for (TrueObject& o : kinds) {
+    o.center = Eigen::Vector3d(1, 2, 3);
+    o.radius = 0.1;
+    o.height = 0.05;
+    o.size = Eigen::Vector3d(0.2, 0.1, 0.05);
+  }
+  std::vector<const TrueObject*> objects;
+  std::vector<float> px, py, pz, nx, ny, nz, fp;
+  for (int i = 0; i < 37; ++i) {  // more than two batches of 16
+    objects.push_back(&kinds[static_cast<std::size_t>(i % 3)]);
+    px.push_back(1.0f + 0.003f * static_cast<float>(i));
+    py.push_back(2.0f - 0.002f * static_cast<float>(i));
+    pz.push_back(3.0f + 0.001f * static_cast<float>(i % 5) * 0.03f);
+    const bool top = i % 2 == 0;
+    nx.push_back(top ? 0.0f : 1.0f);
+    ny.push_back(0.0f);
+    nz.push_back(top ? 1.0f : 0.0f);
+    fp.push_back(i % 4 == 0 ? 0.0f : 0.0005f * static_cast<float>(i % 7));
+  }
+  const int n = static_cast<int>(px.size());
+  std::vector<float> out(px.size());
+  albedo.ObjectBatch(objects.data(), px.data(), py.data(), pz.data(), nx.data(), ny.data(), nz.data(), fp.data(), n,
+                     out.data());
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const float one =
+        albedo.OnObject(*objects[i], Eigen::Vector3f(px[i], py[i], pz[i]), Eigen::Vector3f(nx[i], ny[i], nz[i]), fp[i]);
+    EXPECT_EQ(out[i], one) << i;
+  }
+}
+
 }  // namespace
 }  // namespace hull
