@@ -23,16 +23,16 @@ inline float DistanceToInteger(float x) {
 // channels each, weighted per channel (rows) and octave (columns).
 constexpr int kOctaves = 8;
 constexpr float kCoarsest = 0.96f;
-// HullRow: the coarse octaves (0.96, 0.48, 0.24 m) and the zones (3.84 m)
-// computed exactly every kRowStep points and interpolated between where the
-// two anchors are at most kRowSpan apart and the point within kRowOffset of
-// the line between them. Over 2.5 cm the 0.24 m octave's curvature errs by
-// at most ~5 % of its amplitude, 1 mm off the line by ~3 %; at the survey's
-// 1.5 m the span is the usual 8 pixels (1.1 cm).
-constexpr int kCoarseOctaves = 3;
-constexpr int kRowStep = 8;
-constexpr float kRowSpan = 0.025f;
-constexpr float kRowOffset = 0.001f;
+// HullRow: the coarse octaves (0.96, 0.48, 0.24, 0.12 m) and the zones
+// (3.84 m) computed exactly every kRowStep points and interpolated between
+// where the two anchors are at most kRowSpan apart and the point within
+// kRowOffset of the line between them. Over 1.5 cm the 0.12 m octave's
+// curvature errs by at most ~8 % of its amplitude, 0.5 mm off the line by
+// ~3 % (at the survey's 1.5 m the span is 6 pixels, about 9 mm: ~3 %).
+constexpr int kCoarseOctaves = 4;
+constexpr int kRowStep = 6;
+constexpr float kRowSpan = 0.015f;
+constexpr float kRowOffset = 0.0005f;
 enum Channel { kBlotch = 0, kWear = 1, kTone = 2, kGrain = 3 };
 constexpr float kWeights[4][kOctaves] = {
     {0.0f, 0.5f, 0.6f, 0.45f, 0.3f, 0.18f, 0.0f, 0.0f},  // biofilm blotches: 48 cm .. 3 cm

@@ -53,10 +53,10 @@ class SurfaceAlbedo {
   void HullBatch(const float* px, const float* py, const float* pz, const float* nx, const float* ny, const float* nz,
                  const float* footprint, int n, float* out) const;
   // HullBatch for points along a line of pixels (an image row's hull hits,
-  // in order), cheaper still: the coarsest texture (paint tone and clean
-  // zones, 24 cm and longer) is computed exactly every 8th point and
+  // in order), cheaper still: the coarsest texture (paint tone, blotches and
+  // clean zones, 12 cm and longer) is computed exactly every 6th point and
   // interpolated linearly between where the points lie on a short straight
-  // segment (within 2.5 cm, 1 mm off the line; exact elsewhere), so it
+  // segment (within 1.5 cm, 0.5 mm off the line; exact elsewhere), so it
   // differs from OnHull by well under 0.01 in albedo.
   void HullRow(const float* px, const float* py, const float* pz, const float* nx, const float* ny, const float* nz,
                const float* footprint, int n, float* out) const;

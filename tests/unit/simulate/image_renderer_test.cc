@@ -201,7 +201,7 @@ TEST(UnderwaterRenderer, OptionsAreChecked) {
 }
 
 // The albedo along an image row (SurfaceAlbedo::HullRow, the coarse texture
-// interpolated between every 8th point) against the exact batch: equal at
+// interpolated between every 6th point) against the exact batch: equal at
 // the anchors, within 0.01 everywhere (mean under 0.001) on a row of 1.5 mm
 // steps across a curved hull side and a flat bottom with a jump between;
 // exactly equal where the steps are too long to interpolate (1 cm).
@@ -235,7 +235,7 @@ TEST(SurfaceAlbedoRow, InterpolatedCoarseTextureStaysCloseToTheExactAlbedo) {
     int differing = 0;
     for (int i = 0; i < n; ++i) {
       const double d = std::abs(row[static_cast<std::size_t>(i)] - exact[static_cast<std::size_t>(i)]);
-      if (i % 8 == 0 || i == n - 1) {
+      if (i % 6 == 0 || i == n - 1) {
         EXPECT_EQ(d, 0.0) << "anchor " << i;
       }
       max_diff = std::max(max_diff, d);
@@ -244,7 +244,7 @@ TEST(SurfaceAlbedoRow, InterpolatedCoarseTextureStaysCloseToTheExactAlbedo) {
     }
     if (step > 0.005) {
       EXPECT_EQ(max_diff, 0.0) << "steps too long to interpolate";
-    } else {                        // measured: max 0.0035, mean 0.00005, 1129 of 1360 points differ
+    } else {                        // measured: max 0.0043, mean 0.00006, 1077 of 1360 points differ
       EXPECT_GT(differing, n / 2);  // interpolated
       EXPECT_LT(max_diff, 0.01);
       EXPECT_LT(sum_diff / n, 0.001);
