@@ -620,6 +620,9 @@ void MeshIndex::OccludedToward(const Eigen::Vector3d* points, int n, const Eigen
     }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    // Rays from neighbouring points toward one target are coherent (a hint
+    // to Embree's stream traversal; the answers are the same).
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcOccluded1M(impl_->scene, &context, rays, static_cast<unsigned>(count), sizeof(RTCRay));
     // Embree sets tfar to -inf for an occluded ray.
     for (int i = 0; i < count; ++i) blocked[begin + i] = std::isinf(rays[i].tfar) && rays[i].tfar < 0;

@@ -111,6 +111,9 @@ std::string EncodeImage(const cv::Mat& image, const std::string& extension, cons
   std::vector<int> params;
   if (png) {
     params = {cv::IMWRITE_PNG_COMPRESSION, std::clamp(options.png_compression, 0, 9)};
+    if (options.png_huffman_only) {
+      params.insert(params.end(), {cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_HUFFMAN_ONLY});
+    }
   } else {
     params = {cv::IMWRITE_JPEG_QUALITY, std::clamp(options.jpeg_quality, 1, 100)};
   }

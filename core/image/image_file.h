@@ -67,7 +67,11 @@ cv::Mat DecodeImageBytes(std::string_view bytes, const std::string& name, const 
 
 struct ImageWriteOptions {
   int png_compression = 1;  // zlib level 0..9 (1: fastest, files ~10 % larger than 9)
-  int jpeg_quality = 95;    // 1..100
+  // zlib's Huffman coding only (no string matching): for noisy images such
+  // as the simulator's renderings, about 15 % faster and 15 % smaller than
+  // the default strategy at level 1; much larger for smooth images.
+  bool png_huffman_only = false;
+  int jpeg_quality = 95;  // 1..100
 };
 
 // Writes an 8- or 16-bit, 1- or 3-channel (BGR) image atomically (a sibling

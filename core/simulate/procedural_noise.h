@@ -129,9 +129,10 @@ class GradientNoise {
 // Weight of a noise octave of wavelength `wavelength` seen with a pixel
 // footprint `footprint` (both in metres): 1 while the octave spans at least
 // four footprints, fading to 0 at two (finer octaves would only alias).
+// OctaveWeightOfRatio takes r = wavelength / footprint.
+inline float OctaveWeightOfRatio(float r) { return std::min(std::max(0.5f * (r - 2.0f), 0.0f), 1.0f); }
 inline float OctaveWeight(float wavelength, float footprint) {
-  const float r = wavelength / footprint;  // +inf for footprint 0
-  return std::min(std::max(0.5f * (r - 2.0f), 0.0f), 1.0f);
+  return OctaveWeightOfRatio(wavelength / footprint);  // r = +inf for footprint 0
 }
 
 }  // namespace hull

@@ -43,10 +43,23 @@ class SurfaceAlbedo {
   }
   float OnHull(const Eigen::Vector3f& p, const Eigen::Vector3f& n, float footprint) const;
   float OnObject(const TrueObject& object, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float footprint) const;
+  // OnObject for n points at once (objects[i]: point i's object; positions,
+  // normals, footprints as in HullBatch); the same values, the shared
+  // texture layers computed kLanes points at a time.
+  void ObjectBatch(const TrueObject* const* objects, const float* px, const float* py, const float* pz, const float* nx,
+                   const float* ny, const float* nz, const float* footprint, int n, float* out) const;
   // OnHull for n points at once (structure of arrays: positions, normals,
   // footprints), about four times faster per point; the same values.
   void HullBatch(const float* px, const float* py, const float* pz, const float* nx, const float* ny, const float* nz,
                  const float* footprint, int n, float* out) const;
+  // HullBatch for points along a line of pixels (an image row's hull hits,
+  // in order), cheaper still: the coarsest texture (paint tone, blotches and
+  // clean zones, 12 cm and longer) is computed exactly every 6th point and
+  // interpolated linearly between where the points lie on a short straight
+  // segment (within 1.5 cm, 0.5 mm off the line; exact elsewhere), so it
+  // differs from OnHull by well under 0.01 in albedo.
+  void HullRow(const float* px, const float* py, const float* pz, const float* nx, const float* ny, const float* nz,
+               const float* footprint, int n, float* out) const;
 
   std::uint64_t seed() const { return seed_; }
   const Eigen::Vector3d& forward() const { return forward_; }
@@ -58,9 +71,19 @@ class SurfaceAlbedo {
   void Layers(const float* px, const float* py, const float* pz, const float* footprint, int m,
               float (&layer)[4][kLanes]) const;
   void Layers(const Eigen::Vector3f& p, float footprint, float (&layer)[4]) const;
+  // Adds octaves k0 <= k < k1 of the layers.
+  void Octaves(const float* px, const float* py, const float* pz, const float* footprint, int m, int k0, int k1,
+               float (&layer)[4][kLanes]) const;
+  // The coarse octaves of the layers and the clean-zone noise.
+  void Coarse(const float* px, const float* py, const float* pz, const float* footprint, int m,
+              float (&layer)[4][kLanes], float* zone) const;
+  // coarse (if not null): the coarse layers (coarse[0..3]) and zones
+  // (coarse[4]) of the m points, else computed.
   void HullChunk(const float* px, const float* py, const float* pz, const float* nx, const float* ny, const float* nz,
-                 const float* footprint, int m, float* out) const;
-  float Fouling(const Eigen::Vector3f& p, float footprint) const;
+                 const float* footprint, int m, const float* const* coarse, float* out) const;
+  float ObjectFromLayers(const TrueObject& object, const Eigen::Vector3f& p, const Eigen::Vector3f& n, float footprint,
+                         const float (&layer)[4]) const;
+  float Fouling(const Eigen::Vector3f& p, float footprint, const float (&layer)[4]) const;
 
   std::uint64_t seed_;
   Eigen::Vector3d forward_, up_;

@@ -58,6 +58,7 @@ void WriteSurveyImages(const SimulatedSurvey& s, const std::string& dir, Progres
   const std::unique_ptr<UnderwaterCamera> bottom = stereo ? MakeSurveyCamera(s.bundle.manifest, o, true) : nullptr;
   ImageWriteOptions wo;
   wo.png_compression = o.png_compression;
+  wo.png_huffman_only = true;  // sensor noise leaves little for string matching
   std::atomic<int> done{0};
   std::mutex progress_mutex;
   const int total = listing.present();

@@ -64,18 +64,30 @@ void TrueScene::Index() {
       corner_normals_[f][static_cast<std::size_t>(k)] = (sum.norm() > 0 ? sum.normalized() : nf).cast<float>();
     }
   }
+  face_frames_.resize(mesh_.num_faces());
+  for (std::size_t f = 0; f < mesh_.num_faces(); ++f) {
+    const Face& F = mesh_.faces[f];
+    const Eigen::Vector3d& a = mesh_.vertices[F[0]];
+    const Eigen::Vector3d e1 = mesh_.vertices[F[1]] - a, e2 = mesh_.vertices[F[2]] - a;
+    // v = (d22 r.e1 - d12 r.e2) / det, w = (d11 r.e2 - d12 r.e1) / det for r = p - a.
+    const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2);
+    const double det = d11 * d22 - d12 * d12;
+    FaceFrame& ff = face_frames_[f];
+    ff.degenerate = !(std::abs(det) > 0);
+    if (ff.degenerate) continue;
+    ff.bary_v = (d22 * e1 - d12 * e2) / det;
+    ff.bary_w = (d11 * e2 - d12 * e1) / det;
+  }
 }
 
 Eigen::Vector3f TrueScene::ShadingNormal(int f, const Eigen::Vector3d& p) const {
-  const Face& F = mesh_.faces[static_cast<std::size_t>(f)];
-  const Eigen::Vector3d& a = mesh_.vertices[F[0]];
-  const Eigen::Vector3d e1 = mesh_.vertices[F[1]] - a, e2 = mesh_.vertices[F[2]] - a, r = p - a;
+  const std::size_t i = static_cast<std::size_t>(f);
+  const FaceFrame& ff = face_frames_[i];
+  if (ff.degenerate) return mesh_.face_normals[i].cast<float>();
   // Barycentric coordinates of p's projection onto the face.
-  const double d11 = e1.dot(e1), d12 = e1.dot(e2), d22 = e2.dot(e2), r1 = r.dot(e1), r2 = r.dot(e2);
-  const double det = d11 * d22 - d12 * d12;
-  const auto& c = corner_normals_[static_cast<std::size_t>(f)];
-  if (!(std::abs(det) > 0)) return mesh_.face_normals[static_cast<std::size_t>(f)].cast<float>();
-  const float v = static_cast<float>((d22 * r1 - d12 * r2) / det), w = static_cast<float>((d11 * r2 - d12 * r1) / det);
+  const Eigen::Vector3d r = p - mesh_.vertices[mesh_.faces[i][0]];
+  const float v = static_cast<float>(ff.bary_v.dot(r)), w = static_cast<float>(ff.bary_w.dot(r));
+  const auto& c = corner_normals_[i];
   return ((1 - v - w) * c[0] + v * c[1] + w * c[2]).normalized();
 }
 

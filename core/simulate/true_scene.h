@@ -62,7 +62,7 @@ class TrueScene {
 
  private:
   TrueScene(TriangleMesh mesh, std::vector<int> face_object, std::vector<TrueObject> objects, SurfaceAlbedo albedo);
-  void Index();  // builds index_ and corner_normals_
+  void Index();  // builds index_, corner_normals_ and face_frames_
 
   TriangleMesh mesh_;
   std::vector<int> face_object_;
@@ -70,6 +70,14 @@ class TrueScene {
   SurfaceAlbedo albedo_;
   std::unique_ptr<MeshIndex> index_;
   std::vector<std::array<Eigen::Vector3f, 3>> corner_normals_;
+  // Per face: barycentric coordinates (v, w) of a point p's projection are
+  // (bary_v . (p - a), bary_w . (p - a)), a the face's first corner (zero
+  // vectors for a degenerate face, which takes its face normal).
+  struct FaceFrame {
+    Eigen::Vector3d bary_v, bary_w;
+    bool degenerate = false;
+  };
+  std::vector<FaceFrame> face_frames_;
 };
 
 }  // namespace hull

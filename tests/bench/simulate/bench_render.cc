@@ -86,11 +86,14 @@ int main(int argc, char** argv) {
   // As the simulator writes a bundle (WriteSurveyImages): the views in
   // parallel, each rendered (itself in parallel over rows) and encoded, so
   // one view's PNG encoding overlaps another's rendering.
+  hull::ImageWriteOptions wo;  // as WriteSurveyImages writes them
+  wo.png_compression = survey.imaging->png_compression;
+  wo.png_huffman_only = true;
   std::atomic<std::size_t> bytes{0};
   if (!write_dir.empty()) std::filesystem::create_directories(write_dir);
   tbb::parallel_for(0, n, [&](int i) {
     const cv::Mat image = camera->Render(*scene, hull::TrueCameraPose(survey, view(i), false), i);
-    const std::string png = hull::EncodeImage(image, ".png");
+    const std::string png = hull::EncodeImage(image, ".png", wo);
     bytes += png.size();
     if (!write_dir.empty()) hull::WriteFileAtomic(write_dir + "/" + std::to_string(view(i)) + "_top.png", png);
   });

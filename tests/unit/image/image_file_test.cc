@@ -68,6 +68,23 @@ TEST_F(ImageFileTest, PngLayoutsRoundTripExactly) {
   EXPECT_EQ(ReadImageFile(dir_ / "deep.png").at<std::uint16_t>(2, 2), 40000);
 }
 
+// Huffman-only coding (the simulator's renderings): still an exact PNG, and
+// on sensor-like noise smaller than the default strategy at the same level.
+TEST_F(ImageFileTest, HuffmanOnlyPngRoundTripsAndIsSmallerOnNoise) {
+  cv::Mat noise(96, 128, CV_8UC1);
+  cv::randn(noise, cv::Scalar(120), cv::Scalar(12));  // cv::theRNG's fixed default seed
+  ImageWriteOptions huffman;
+  huffman.png_huffman_only = true;
+  const std::string path = dir_ / "noise.png";
+  WriteImageFile(path, noise, huffman);
+  ImageInfo info;
+  EXPECT_TRUE(SamePixels(noise, ReadImageFile(path, {}, &info)));
+  EXPECT_EQ(info.codec, ImageCodec::kPng);
+  EXPECT_EQ(info.bit_depth, 8);
+  EXPECT_EQ(info.channels, 1);
+  EXPECT_LT(EncodeImage(noise, ".png", huffman).size(), EncodeImage(noise, ".png").size());
+}
+
 TEST_F(ImageFileTest, JpegGreyAndColourAreRead) {
   for (int type : {CV_8UC1, CV_8UC3}) {
     const cv::Mat image = PatternImage(64, 48, type, 3);
