@@ -23,6 +23,7 @@
 #include "vision/stereo_matching.h"
 #include "vision/temporal_matching.h"
 #include "vision/track_check.h"
+#include "vision/track_refinement.h"
 
 namespace hull {
 namespace fs = std::filesystem;
@@ -225,18 +226,50 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
       links.push_back({t.distance, static_cast<int>(job.a), t.a, static_cast<int>(job.b), t.b});
   }
   std::stable_sort(links.begin(), links.end(), [](const Link& a, const Link& b) { return a.distance < b.distance; });
+  // SIFT's copies of one keypoint (one per dominant orientation) are one
+  // feature for the tracks: each copy's links go to the first at its position.
+  std::vector<std::vector<int>> first_copy(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    first_copy[i] = DuplicateKeypoints(views[i].top.points);
+    for (std::size_t f = 0; f < first_copy[i].size(); ++f)
+      r.duplicate_keypoints += first_copy[i][f] != static_cast<int>(f);
+  }
+  auto canonical = [&](int k, int f) { return first_copy[static_cast<std::size_t>(k)][static_cast<std::size_t>(f)]; };
   std::vector<int> counts(n);
   for (std::size_t i = 0; i < n; ++i) counts[i] = static_cast<int>(views[i].top.size());
   TrackBuilder builder(counts);
-  for (const Link& l : links) builder.Link(l.ka, l.fa, l.kb, l.fb);
+  for (const Link& l : links) builder.Link(l.ka, canonical(l.ka, l.fa), l.kb, canonical(l.kb, l.fb));
   r.refused_merges = builder.refused();
   std::vector<TrackBuilder::Track> tracks = builder.Tracks(o.tracks.min_keyframes, &r.dropped_tracks);
+  // A copy's stereo match is the first copy's.
+  std::vector<std::vector<int>> bottom_of(n);  // top feature -> stereo match (-1: none)
+  for (std::size_t i = 0; i < n; ++i) {
+    bottom_of[i].assign(views[i].top.size(), -1);
+    for (std::size_t s = 0; s < views[i].stereo.size(); ++s) {
+      int& b = bottom_of[i][static_cast<std::size_t>(canonical(static_cast<int>(i), views[i].stereo[s].top))];
+      if (b < 0) b = static_cast<int>(s);
+    }
+  }
+  // 3b. Sub-pixel refinement of the tracks' top pixels.
+  if (o.tracks.refine) {
+    progress.Update(0.96, "refining the tracks' pixels");
+    std::vector<std::vector<Eigen::Vector2d>> points(n);
+    std::vector<Pose> cameras(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      points[i] = views[i].top.points;
+      cameras[i] = views[i].x_g_cT;
+    }
+    r.refinement = RefineTrackPixels(
+        tracks, [&](std::size_t k) { return ReadSurveyImage(bundle, views[k].keyframe, false); }, cameras, rig.top,
+        points, o.tracks, o.threads);
+    for (std::size_t i = 0; i < n; ++i) views[i].top.points = std::move(points[i]);
+  }
   if (o.tracks.check_dvl_height) {
     progress.Update(0.97, "checking mono tracks against the DVL");
     std::vector<std::vector<char>> has_stereo(n);
     for (std::size_t i = 0; i < n; ++i) {
       has_stereo[i].assign(views[i].top.size(), 0);
-      for (const StereoMatch& s : views[i].stereo) has_stereo[i][static_cast<std::size_t>(s.top)] = 1;
+      for (std::size_t f = 0; f < bottom_of[i].size(); ++f) has_stereo[i][f] = bottom_of[i][f] >= 0;
     }
     std::vector<std::optional<CameraPlane>> planes(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -264,12 +297,6 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   }
 
   // 4. Observations with global landmark ids (track order).
-  std::vector<std::vector<int>> bottom_of(n);  // top feature -> bottom feature (-1: none)
-  for (std::size_t i = 0; i < n; ++i) {
-    bottom_of[i].assign(views[i].top.size(), -1);
-    for (std::size_t s = 0; s < views[i].stereo.size(); ++s)
-      bottom_of[i][static_cast<std::size_t>(views[i].stereo[s].top)] = static_cast<int>(s);
-  }
   std::vector<std::tuple<int, std::int64_t, FeatureObservation>> rows;
   for (std::size_t t = 0; t < tracks.size(); ++t) {
     for (const auto& [k, f] : tracks[t]) {
@@ -287,6 +314,10 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
       r.keyframes[ki].landmark[static_cast<std::size_t>(f)] = obs.landmark;
       ++r.keyframes[ki].tracked;
     }
+  }
+  for (std::size_t i = 0; i < n; ++i) {  // a copy's landmark is its first copy's
+    std::vector<std::int64_t>& l = r.keyframes[i].landmark;
+    for (std::size_t f = 0; f < l.size(); ++f) l[f] = l[static_cast<std::size_t>(first_copy[i][f])];
   }
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
     return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));

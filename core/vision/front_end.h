@@ -13,6 +13,7 @@
 #include "base/progress.h"
 #include "survey/survey.h"
 #include "vision/track_check.h"
+#include "vision/track_refinement.h"
 #include "vision/vision_options.h"
 
 namespace hull {
@@ -73,6 +74,8 @@ struct FrontEndResult {
   int landmarks = 0;                         // tracks written (ids 0 .. landmarks-1)
   int refused_merges = 0;                    // links refused: would put two features of one image in a track
   int dropped_tracks = 0;                    // tracks seen in fewer than min_keyframes keyframes
+  int duplicate_keypoints = 0;               // top features repeating another's position (SIFT orientations), merged
+  TrackRefinementStats refinement;           // the sub-pixel refinement of the tracks' top pixels
   // The DVL height check of mono tracks (track_check.h): every track
   // checked with its verdict; those not kept are not written.
   std::vector<TrackCheck> track_checks;
