@@ -149,9 +149,9 @@ int RunFeatures(const CommandArgs& argv) {
       r.landmarks, r.features.size(), r.refused_merges, r.dropped_tracks, r.tracks_failed_check, r.track_checks.size(),
       r.seconds);
   std::printf(
-      "%d duplicate SIFT keypoints merged; %d track members refined to their reference's patch, %d kept "
-      "SIFT's pixel\n",
-      r.duplicate_keypoints, r.refinement.refined, r.refinement.kept);
+      "%d duplicate SIFT keypoints, %d tracks repeating another's pixels dropped; %d track members refined to "
+      "their reference's patch, %d kept SIFT's pixel\n",
+      r.duplicate_keypoints, r.duplicate_tracks, r.refinement.refined, r.refinement.kept);
   std::printf("wrote %s\n", out.c_str());
   return kExitOk;
 }

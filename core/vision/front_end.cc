@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <unordered_map>
 
@@ -226,29 +227,43 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
       links.push_back({t.distance, static_cast<int>(job.a), t.a, static_cast<int>(job.b), t.b});
   }
   std::stable_sort(links.begin(), links.end(), [](const Link& a, const Link& b) { return a.distance < b.distance; });
-  // SIFT's copies of one keypoint (one per dominant orientation) are one
-  // feature for the tracks: each copy's links go to the first at its position.
-  std::vector<std::vector<int>> first_copy(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    first_copy[i] = DuplicateKeypoints(views[i].top.points);
-    for (std::size_t f = 0; f < first_copy[i].size(); ++f)
-      r.duplicate_keypoints += first_copy[i][f] != static_cast<int>(f);
-  }
-  auto canonical = [&](int k, int f) { return first_copy[static_cast<std::size_t>(k)][static_cast<std::size_t>(f)]; };
   std::vector<int> counts(n);
   for (std::size_t i = 0; i < n; ++i) counts[i] = static_cast<int>(views[i].top.size());
   TrackBuilder builder(counts);
-  for (const Link& l : links) builder.Link(l.ka, canonical(l.ka, l.fa), l.kb, canonical(l.kb, l.fb));
+  for (const Link& l : links) builder.Link(l.ka, l.fa, l.kb, l.fb);
   r.refused_merges = builder.refused();
   std::vector<TrackBuilder::Track> tracks = builder.Tracks(o.tracks.min_keyframes, &r.dropped_tracks);
-  // A copy's stereo match is the first copy's.
+  // SIFT's copies of one keypoint (one per dominant orientation) each match
+  // on their own: a track whose members are, keyframe by keyframe, at the
+  // same positions as an earlier track's is that track again, and dropped.
+  // (Linking the copies as one feature instead joins their tracks, and one
+  // copy's wrong match then spoils the other's right track: docs/vision.md.)
+  {
+    std::vector<std::vector<int>> first_copy(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      first_copy[i] = DuplicateKeypoints(views[i].top.points);
+      for (std::size_t f = 0; f < first_copy[i].size(); ++f)
+        r.duplicate_keypoints += first_copy[i][f] != static_cast<int>(f);
+    }
+    std::set<TrackBuilder::Track> seen;
+    std::vector<TrackBuilder::Track> unique;
+    unique.reserve(tracks.size());
+    for (TrackBuilder::Track& t : tracks) {
+      TrackBuilder::Track key = t;
+      for (auto& [k, f] : key) f = first_copy[static_cast<std::size_t>(k)][static_cast<std::size_t>(f)];
+      if (!seen.insert(std::move(key)).second) {
+        ++r.duplicate_tracks;
+        continue;
+      }
+      unique.push_back(std::move(t));
+    }
+    tracks = std::move(unique);
+  }
   std::vector<std::vector<int>> bottom_of(n);  // top feature -> stereo match (-1: none)
   for (std::size_t i = 0; i < n; ++i) {
     bottom_of[i].assign(views[i].top.size(), -1);
-    for (std::size_t s = 0; s < views[i].stereo.size(); ++s) {
-      int& b = bottom_of[i][static_cast<std::size_t>(canonical(static_cast<int>(i), views[i].stereo[s].top))];
-      if (b < 0) b = static_cast<int>(s);
-    }
+    for (std::size_t s = 0; s < views[i].stereo.size(); ++s)
+      bottom_of[i][static_cast<std::size_t>(views[i].stereo[s].top)] = static_cast<int>(s);
   }
   // 3b. Sub-pixel refinement of the tracks' top pixels.
   if (o.tracks.refine) {
@@ -262,7 +277,10 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
     r.refinement = RefineTrackPixels(
         tracks, [&](std::size_t k) { return ReadSurveyImage(bundle, views[k].keyframe, false); }, cameras, rig.top,
         points, o.tracks, o.threads);
-    for (std::size_t i = 0; i < n; ++i) views[i].top.points = std::move(points[i]);
+    for (std::size_t i = 0; i < n; ++i) {
+      views[i].top.points = std::move(points[i]);
+      r.keyframes[i].top_points = views[i].top.points;  // the tracks' members where they were aligned
+    }
   }
   if (o.tracks.check_dvl_height) {
     progress.Update(0.97, "checking mono tracks against the DVL");
@@ -314,10 +332,6 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
       r.keyframes[ki].landmark[static_cast<std::size_t>(f)] = obs.landmark;
       ++r.keyframes[ki].tracked;
     }
-  }
-  for (std::size_t i = 0; i < n; ++i) {  // a copy's landmark is its first copy's
-    std::vector<std::int64_t>& l = r.keyframes[i].landmark;
-    for (std::size_t f = 0; f < l.size(); ++f) l[f] = l[static_cast<std::size_t>(first_copy[i][f])];
   }
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) {
     return std::tie(std::get<0>(a), std::get<1>(a)) < std::tie(std::get<0>(b), std::get<1>(b));

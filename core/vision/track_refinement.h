@@ -13,10 +13,11 @@
 //
 // OpenCV's SIFT gives one keypoint per dominant orientation: about one in
 // six of its keypoints repeats another's position in the same image. Each
-// copy matches on its own, so one physical point made up to two tracks with
-// the same pixels (counted twice by the adjustment and by the mapping's
-// feature support). DuplicateKeypoints maps each copy to the first feature
-// at its position; the front end links the tracks through that one.
+// copy matches on its own, so one physical point made two tracks with the
+// same pixels (counted twice by the adjustment and by the mapping's feature
+// support). DuplicateKeypoints maps each copy to the first feature at its
+// position; the front end drops a track that repeats an earlier one's
+// positions in every keyframe.
 #pragma once
 
 #include <Eigen/Core>

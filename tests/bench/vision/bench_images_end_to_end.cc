@@ -71,7 +71,8 @@ struct TraceRequest {
 // The landmarks over one true object that stand more than `above` over its
 // true max, traced to their tracks against the true scene (see --trace).
 void TraceObject(const PipelineInputs& in, const MappingInput& input, const ObjectHeightCheck& c,
-                 const Pose& model_to_true, const TraceRequest& req) {
+                 const TrueObject& object, const TriangleMesh& model, const Pose& model_to_true,
+                 const TraceRequest& req) {
   const SurveyBundle& b = in.bundle;
   if (!b.truth || b.directory.empty()) return;
   const std::unique_ptr<TrueScene> scene = TrueScene::Load(b);
@@ -93,9 +94,48 @@ void TraceObject(const PipelineInputs& in, const MappingInput& input, const Obje
     return o ? o->id : std::string("hull");
   };
   std::printf("trace %s (true max %.3f m): landmarks above %.3f m\n", c.id.c_str(), c.true_max, c.true_max + req.above);
+  // The model's highest vertices near the object (not only in its region),
+  // and the landmarks near them: what the fusion may have moved them with.
+  const std::vector<double>* deviation = model.FindScalar("deviation");
+  const std::vector<double>* fusions = model.FindScalar("fusions");
+  const double reach = 0.5 * std::hypot(object.size.x(), object.size.y()) + object.radius + 0.15;
+  auto lateral = [&](const Eigen::Vector3d& p_true_M) {
+    const Eigen::Vector3d d = p_true_M - object.center;
+    return (d - d.dot(object.normal) * object.normal).norm();
+  };
+  std::vector<std::pair<double, std::size_t>> near_vertices;
+  std::vector<int> near_landmarks;
+  for (std::size_t v = 0; deviation && v < model.num_vertices(); ++v) {
+    if (lateral(model_to_true * model.vertices[v]) <= reach && (*deviation)[v] > c.true_max + req.above)
+      near_vertices.emplace_back((*deviation)[v], v);
+  }
+  std::sort(near_vertices.rbegin(), near_vertices.rend());
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, near_vertices.size()); ++i) {
+    const std::size_t v = near_vertices[i].second;
+    const Eigen::Vector3d p = model_to_true * model.vertices[v];
+    std::printf("  model vertex %zu: h %.3f m, %.3f m from the centre across the normal, %.0f fusions\n", v,
+                near_vertices[i].first, lateral(p), fusions ? (*fusions)[v] : std::nan(""));
+    for (std::size_t l = 0; l < input.landmarks.size(); ++l) {
+      const Eigen::Vector3d q = model_to_true * (input.x_gM.Inverse() * input.landmarks[l].p_g);
+      if ((q - p).norm() > 0.05 || input.landmarks[l].deviation < c.true_max + req.above) continue;
+      if (std::find(near_landmarks.begin(), near_landmarks.end(), static_cast<int>(l)) == near_landmarks.end())
+        near_landmarks.push_back(static_cast<int>(l));
+      std::printf("    landmark %lld within %.3f m of it: adjusted h %.3f m, %.3f m from the centre\n",
+                  static_cast<long long>(input.landmarks[l].id), (q - p).norm(), input.landmarks[l].deviation,
+                  lateral(q));
+    }
+  }
+  // The region's landmarks above the limit (highest first), then those
+  // next to the highest vertices.
+  std::vector<int> listed;
   for (const int li : c.landmarks) {
+    if (input.landmarks[static_cast<std::size_t>(li)].deviation <= c.true_max + req.above) break;
+    listed.push_back(li);
+  }
+  for (const int li : near_landmarks)
+    if (std::find(listed.begin(), listed.end(), li) == listed.end()) listed.push_back(li);
+  for (const int li : listed) {
     const MappingLandmark& l = input.landmarks[static_cast<std::size_t>(li)];
-    if (l.deviation <= c.true_max + req.above) break;  // highest first
     const auto t = truth.find(l.id);
     const Eigen::Vector3d adjusted_M = model_to_true * (Mg * l.p_g);
     const Eigen::Vector3d true_M = t != truth.end() ? true_Mg * t->second->p : Eigen::Vector3d::Constant(std::nan(""));
@@ -156,8 +196,11 @@ ObjectScore ScoreObjects(const PipelineInputs& in, const PipelineResult& r, cons
   const std::vector<ObjectHeightCheck> checks = CheckObjectHeights(
       m.model, m.objects, input, model_to_true, sim.bundle.truth->objects, sim.object_meshes, cad, &m.keyframes);
   if (!trace.object.empty() && in.bundle.features_from_images) {
-    for (const ObjectHeightCheck& c : checks)
-      if (c.id == trace.object) TraceObject(in, input, c, model_to_true, trace);
+    for (const ObjectHeightCheck& c : checks) {
+      if (c.id != trace.object) continue;
+      for (const TrueObject& o : sim.bundle.truth->objects)
+        if (o.id == c.id) TraceObject(in, input, c, o, m.model, model_to_true, trace);
+    }
   }
   std::printf("%s", ObjectHeightTable(checks, min_height, 0.01).c_str());
   const FoundObjects found = CountFoundObjects(checks, m.objects, min_height);
