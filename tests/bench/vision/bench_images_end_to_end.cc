@@ -94,6 +94,20 @@ void TraceObject(const PipelineInputs& in, const MappingInput& input, const Obje
     return o ? o->id : std::string("hull");
   };
   std::printf("trace %s (true max %.3f m): landmarks above %.3f m\n", c.id.c_str(), c.true_max, c.true_max + req.above);
+  // The landmarks whose true point lies on the object, by true height: how
+  // near its top the features reach, and where the adjustment put them.
+  {
+    std::unordered_map<std::int64_t, double> adjusted_h;
+    for (const MappingLandmark& l : input.landmarks) adjusted_h[l.id] = l.deviation;
+    std::vector<std::pair<double, std::int64_t>> on;
+    for (const TrueLandmark& l : b.truth->landmarks)
+      if (l.object == c.id && adjusted_h.count(l.landmark)) on.emplace_back(l.deviation, l.landmark);
+    std::sort(on.rbegin(), on.rend());
+    std::printf("  %zu landmarks truly on it; the highest by true h (true, adjusted):", on.size());
+    for (std::size_t i = 0; i < std::min<std::size_t>(8, on.size()); ++i)
+      std::printf(" %.3f/%.3f", on[i].first, adjusted_h[on[i].second]);
+    std::printf("\n");
+  }
   // The model's highest vertices near the object (not only in its region),
   // and the landmarks near them: what the fusion may have moved them with.
   const std::vector<double>* deviation = model.FindScalar("deviation");
