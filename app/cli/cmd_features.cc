@@ -44,6 +44,7 @@ options:
   --no-track-check        keep mono tracks however far off the DVL plane they stand
   --track-check-max-height M   drop short mono tracks this far in front of the DVL plane (default 0.25)
   --track-check-min-height M   ... or this far behind it (negative, default -0.1)
+  --no-refine             keep SIFT's pixels (no sub-pixel alignment of each track's patches)
   --threads N             worker threads (default: all cores)
   --quiet
 )";
@@ -51,7 +52,7 @@ options:
 }  // namespace
 
 int RunFeatures(const CommandArgs& argv) {
-  Args a(argv, {"force", "no-clahe", "no-loops", "no-track-check", "quiet"});
+  Args a(argv, {"force", "no-clahe", "no-loops", "no-track-check", "no-refine", "quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
@@ -75,6 +76,7 @@ int RunFeatures(const CommandArgs& argv) {
                "no-track-check",
                "track-check-max-height",
                "track-check-min-height",
+               "no-refine",
                "threads",
                "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
@@ -97,6 +99,7 @@ int RunFeatures(const CommandArgs& argv) {
   o.tracks.check_dvl_height = !a.Has("no-track-check");
   o.tracks.check_max_height = a.GetDouble("track-check-max-height", o.tracks.check_max_height);
   o.tracks.check_min_height = a.GetDouble("track-check-min-height", o.tracks.check_min_height);
+  o.tracks.refine = !a.Has("no-refine");
   o.threads = static_cast<int>(a.GetInt("threads", 0));
   o.Check();
   const std::string out = a.Get("out", (std::filesystem::path(bundle_dir) / "features.csv").string());
@@ -145,6 +148,10 @@ int RunFeatures(const CommandArgs& argv) {
       "dropped off the DVL plane; %.1f s\n",
       r.landmarks, r.features.size(), r.refused_merges, r.dropped_tracks, r.tracks_failed_check, r.track_checks.size(),
       r.seconds);
+  std::printf(
+      "%d duplicate SIFT keypoints, %d tracks repeating another's pixels dropped; %d track members refined to "
+      "their reference's patch, %d kept SIFT's pixel\n",
+      r.duplicate_keypoints, r.duplicate_tracks, r.refinement.refined, r.refinement.kept);
   std::printf("wrote %s\n", out.c_str());
   return kExitOk;
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <tuple>
 #include <unordered_map>
 
@@ -23,6 +24,7 @@
 #include "vision/stereo_matching.h"
 #include "vision/temporal_matching.h"
 #include "vision/track_check.h"
+#include "vision/track_refinement.h"
 
 namespace hull {
 namespace fs = std::filesystem;
@@ -231,12 +233,61 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   for (const Link& l : links) builder.Link(l.ka, l.fa, l.kb, l.fb);
   r.refused_merges = builder.refused();
   std::vector<TrackBuilder::Track> tracks = builder.Tracks(o.tracks.min_keyframes, &r.dropped_tracks);
+  // SIFT's copies of one keypoint (one per dominant orientation) each match
+  // on their own: a track whose members are, keyframe by keyframe, at the
+  // same positions as an earlier track's is that track again, and dropped.
+  // (Linking the copies as one feature instead joins their tracks, and one
+  // copy's wrong match then spoils the other's right track: docs/vision.md.)
+  {
+    std::vector<std::vector<int>> first_copy(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      first_copy[i] = DuplicateKeypoints(views[i].top.points);
+      for (std::size_t f = 0; f < first_copy[i].size(); ++f)
+        r.duplicate_keypoints += first_copy[i][f] != static_cast<int>(f);
+    }
+    std::set<TrackBuilder::Track> seen;
+    std::vector<TrackBuilder::Track> unique;
+    unique.reserve(tracks.size());
+    for (TrackBuilder::Track& t : tracks) {
+      TrackBuilder::Track key = t;
+      for (auto& [k, f] : key) f = first_copy[static_cast<std::size_t>(k)][static_cast<std::size_t>(f)];
+      if (!seen.insert(std::move(key)).second) {
+        ++r.duplicate_tracks;
+        continue;
+      }
+      unique.push_back(std::move(t));
+    }
+    tracks = std::move(unique);
+  }
+  std::vector<std::vector<int>> bottom_of(n);  // top feature -> stereo match (-1: none)
+  for (std::size_t i = 0; i < n; ++i) {
+    bottom_of[i].assign(views[i].top.size(), -1);
+    for (std::size_t s = 0; s < views[i].stereo.size(); ++s)
+      bottom_of[i][static_cast<std::size_t>(views[i].stereo[s].top)] = static_cast<int>(s);
+  }
+  // 3b. Sub-pixel refinement of the tracks' top pixels.
+  if (o.tracks.refine) {
+    progress.Update(0.96, "refining the tracks' pixels");
+    std::vector<std::vector<Eigen::Vector2d>> points(n);
+    std::vector<Pose> cameras(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      points[i] = views[i].top.points;
+      cameras[i] = views[i].x_g_cT;
+    }
+    r.refinement = RefineTrackPixels(
+        tracks, [&](std::size_t k) { return ReadSurveyImage(bundle, views[k].keyframe, false); }, cameras, rig.top,
+        points, o.tracks, o.threads);
+    for (std::size_t i = 0; i < n; ++i) {
+      views[i].top.points = std::move(points[i]);
+      r.keyframes[i].top_points = views[i].top.points;  // the tracks' members where they were aligned
+    }
+  }
   if (o.tracks.check_dvl_height) {
     progress.Update(0.97, "checking mono tracks against the DVL");
     std::vector<std::vector<char>> has_stereo(n);
     for (std::size_t i = 0; i < n; ++i) {
       has_stereo[i].assign(views[i].top.size(), 0);
-      for (const StereoMatch& s : views[i].stereo) has_stereo[i][static_cast<std::size_t>(s.top)] = 1;
+      for (std::size_t f = 0; f < bottom_of[i].size(); ++f) has_stereo[i][f] = bottom_of[i][f] >= 0;
     }
     std::vector<std::optional<CameraPlane>> planes(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -264,12 +315,6 @@ FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& o,
   }
 
   // 4. Observations with global landmark ids (track order).
-  std::vector<std::vector<int>> bottom_of(n);  // top feature -> bottom feature (-1: none)
-  for (std::size_t i = 0; i < n; ++i) {
-    bottom_of[i].assign(views[i].top.size(), -1);
-    for (std::size_t s = 0; s < views[i].stereo.size(); ++s)
-      bottom_of[i][static_cast<std::size_t>(views[i].stereo[s].top)] = static_cast<int>(s);
-  }
   std::vector<std::tuple<int, std::int64_t, FeatureObservation>> rows;
   for (std::size_t t = 0; t < tracks.size(); ++t) {
     for (const auto& [k, f] : tracks[t]) {

@@ -13,6 +13,7 @@
 #include "base/progress.h"
 #include "survey/survey.h"
 #include "vision/track_check.h"
+#include "vision/track_refinement.h"
 #include "vision/vision_options.h"
 
 namespace hull {
@@ -46,7 +47,9 @@ struct FrontEndKeyframe {
   // The features and matches themselves (what the GUI's images view draws):
   // pixel positions (origin at the centre of the top-left pixel) and SIFT
   // sizes (diameter, px) of each image's features, the stereo matches, and
-  // per top feature the landmark id of its track (-1: not in a track).
+  // per top feature the landmark id of its track (-1: not in a track). A
+  // track member's top point is where the refinement aligned it
+  // (track_refinement.h; the observation written), others SIFT's.
   std::vector<Eigen::Vector2d> top_points, bottom_points;
   std::vector<float> top_sizes, bottom_sizes;
   std::vector<FrontEndStereoLink> stereo;
@@ -73,6 +76,9 @@ struct FrontEndResult {
   int landmarks = 0;                         // tracks written (ids 0 .. landmarks-1)
   int refused_merges = 0;                    // links refused: would put two features of one image in a track
   int dropped_tracks = 0;                    // tracks seen in fewer than min_keyframes keyframes
+  int duplicate_keypoints = 0;      // top features repeating another's position (SIFT: one per dominant orientation)
+  int duplicate_tracks = 0;         // tracks repeating an earlier track's positions in every keyframe, dropped
+  TrackRefinementStats refinement;  // the sub-pixel refinement of the tracks' top pixels
   // The DVL height check of mono tracks (track_check.h): every track
   // checked with its verdict; those not kept are not written.
   std::vector<TrackCheck> track_checks;

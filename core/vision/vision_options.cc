@@ -69,6 +69,9 @@ void TrackOptions::Check() const {
   Require(check_min_height < 0, "track_check_min_height", "must be negative (m)");
   Require(check_max_reprojection > 0, "track_check_max_reprojection", "must be positive (px)");
   Require(std::isfinite(check_reprojection_height), "track_check_reprojection_height", "must be finite (m)");
+  Require(refine_radius >= 2 && refine_radius <= 32, "refine_radius", "must be 2 to 32 (px)");
+  Require(refine_max_shift > 0, "refine_max_shift", "must be positive (px)");
+  Require(refine_min_ncc >= -1 && refine_min_ncc <= 1, "refine_min_ncc", "must be -1 to 1");
 }
 
 void FrontEndOptions::Check() const {

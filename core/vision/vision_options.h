@@ -77,6 +77,12 @@ struct TrackOptions {
   // observation is wrong (its rays meet pairwise at different points):
   double check_max_reprojection = 8.0;      // px: dropped when the point reprojects this far from a member's feature
   double check_reprojection_height = 0.05;  // m: ... and stands at least this far in front of the members' planes
+  // Sub-pixel refinement of the tracks (track_refinement.h): each member's
+  // patch aligned with its track's first member's (translation, gain, bias).
+  bool refine = true;
+  int refine_radius = 7;          // px: patch half-width (Gaussian weights, sigma = radius / 2)
+  double refine_max_shift = 3.0;  // px: an alignment moving the feature farther keeps the detector's pixel
+  double refine_min_ncc = 0.8;    // ... so does one whose patches correlate less (weighted NCC)
   void Check() const;
 };
 

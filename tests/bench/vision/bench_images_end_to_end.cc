@@ -14,7 +14,7 @@
 //
 //   bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N]
 //                           [--tau M] [--threads N] [--min-features N] [--grow-height M]
-//                           [--keep DIR [--reuse]]
+//                           [--keep DIR [--reuse]] [--trace OBJECT [--trace-above M]]
 // --keep DIR keeps both bundles (DIR/given, DIR/images; the front end's
 // features.csv and match-graph.csv written into DIR/images); --reuse then
 // starts from them (no rendering, no front end) to score other options.
@@ -22,6 +22,14 @@
 // test alone, the detection before small supported objects were kept);
 // --grow-height M the level Algorithm 1's hysteresis grows clusters down
 // to (MappingOptions::shape_grow_height; a height >= tau turns it off).
+// --trace OBJECT prints, for the run from the images, every landmark over
+// that true object standing more than --trace-above M (default 0.01 m)
+// above the object's true max: its track (keyframe, pixel), each pixel cast
+// from the TRUE camera onto the true scene (what it shows), the track's true
+// point reprojected into each true camera, the adjusted point's residual
+// with the adjusted camera, and how far a 2 px step of the pixel moves the
+// hit (a jump: the pixel sits on an occlusion boundary).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -29,6 +37,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "adjust/adjust_result.h"
@@ -37,7 +46,9 @@
 #include "mapping/mapping_input.h"
 #include "mapping/object_height_check.h"
 #include "pipeline/pipeline.h"
+#include "simulate/image_track_truth.h"
 #include "simulate/survey_simulator.h"
+#include "simulate/true_scene.h"
 #include "support/test_files.h"
 
 namespace {
@@ -52,17 +63,159 @@ struct ObjectScore {
   double worst_error = 0;                                          // over found objects >= min_height
 };
 
+struct TraceRequest {
+  std::string object;  // empty: none
+  double above = 0.01;
+};
+
+// The landmarks over one true object that stand more than `above` over its
+// true max, traced to their tracks against the true scene (see --trace).
+void TraceObject(const PipelineInputs& in, const MappingInput& input, const ObjectHeightCheck& c,
+                 const TrueObject& object, const TriangleMesh& model, const Pose& model_to_true,
+                 const TraceRequest& req) {
+  const SurveyBundle& b = in.bundle;
+  if (!b.truth || b.directory.empty()) return;
+  const std::unique_ptr<TrueScene> scene = TrueScene::Load(b);
+  const MeshIndex cad(in.mesh);
+  const CameraRig& rig = b.manifest.camera;
+  const Pose true_Mg = Pose::FromVector(b.truth->x_gM).Inverse();
+  std::unordered_map<std::int64_t, std::size_t> pose_of;
+  for (std::size_t i = 0; i < b.truth->poses.size(); ++i) pose_of[b.truth->poses[i].keyframe] = i;
+  std::unordered_map<std::int64_t, const TrueLandmark*> truth;
+  for (const TrueLandmark& l : b.truth->landmarks) truth[l.landmark] = &l;
+  std::unordered_map<std::int64_t, std::vector<const FeatureObservation*>> obs;
+  for (const FeatureObservation& f : b.features) obs[f.landmark].push_back(&f);
+  std::unordered_map<std::int64_t, const MappingKeyframe*> adjusted_kf;
+  for (const MappingKeyframe& k : input.keyframes) adjusted_kf[k.id] = &k;
+  const Pose Mg = input.x_gM.Inverse();
+  auto what = [&](const RayHit& h) -> std::string {
+    if (!h.hit) return "nothing";
+    const TrueObject* o = scene->ObjectOfFace(h.face);
+    return o ? o->id : std::string("hull");
+  };
+  std::printf("trace %s (true max %.3f m): landmarks above %.3f m\n", c.id.c_str(), c.true_max, c.true_max + req.above);
+  // The landmarks whose true point lies on the object, by true height: how
+  // near its top the features reach, and where the adjustment put them.
+  {
+    std::unordered_map<std::int64_t, double> adjusted_h;
+    for (const MappingLandmark& l : input.landmarks) adjusted_h[l.id] = l.deviation;
+    std::vector<std::pair<double, std::int64_t>> on;
+    for (const TrueLandmark& l : b.truth->landmarks)
+      if (l.object == c.id && adjusted_h.count(l.landmark)) on.emplace_back(l.deviation, l.landmark);
+    std::sort(on.rbegin(), on.rend());
+    std::printf("  %zu landmarks truly on it; the highest by true h (true, adjusted):", on.size());
+    for (std::size_t i = 0; i < std::min<std::size_t>(8, on.size()); ++i)
+      std::printf(" %.3f/%.3f", on[i].first, adjusted_h[on[i].second]);
+    std::printf("\n");
+  }
+  // The model's highest vertices near the object (not only in its region),
+  // and the landmarks near them: what the fusion may have moved them with.
+  const std::vector<double>* deviation = model.FindScalar("deviation");
+  const std::vector<double>* fusions = model.FindScalar("fusions");
+  const double reach = 0.5 * std::hypot(object.size.x(), object.size.y()) + object.radius + 0.15;
+  auto lateral = [&](const Eigen::Vector3d& p_true_M) {
+    const Eigen::Vector3d d = p_true_M - object.center;
+    return (d - d.dot(object.normal) * object.normal).norm();
+  };
+  std::vector<std::pair<double, std::size_t>> near_vertices;
+  std::vector<int> near_landmarks;
+  for (std::size_t v = 0; deviation && v < model.num_vertices(); ++v) {
+    if (lateral(model_to_true * model.vertices[v]) <= reach && (*deviation)[v] > c.true_max + req.above)
+      near_vertices.emplace_back((*deviation)[v], v);
+  }
+  std::sort(near_vertices.rbegin(), near_vertices.rend());
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, near_vertices.size()); ++i) {
+    const std::size_t v = near_vertices[i].second;
+    const Eigen::Vector3d p = model_to_true * model.vertices[v];
+    std::printf("  model vertex %zu: h %.3f m, %.3f m from the centre across the normal, %.0f fusions\n", v,
+                near_vertices[i].first, lateral(p), fusions ? (*fusions)[v] : std::nan(""));
+    for (std::size_t l = 0; l < input.landmarks.size(); ++l) {
+      const Eigen::Vector3d q = model_to_true * (input.x_gM.Inverse() * input.landmarks[l].p_g);
+      if ((q - p).norm() > 0.05 || input.landmarks[l].deviation < c.true_max + req.above) continue;
+      if (std::find(near_landmarks.begin(), near_landmarks.end(), static_cast<int>(l)) == near_landmarks.end())
+        near_landmarks.push_back(static_cast<int>(l));
+      std::printf("    landmark %lld within %.3f m of it: adjusted h %.3f m, %.3f m from the centre\n",
+                  static_cast<long long>(input.landmarks[l].id), (q - p).norm(), input.landmarks[l].deviation,
+                  lateral(q));
+    }
+  }
+  // The region's landmarks above the limit (highest first), then those
+  // next to the highest vertices.
+  std::vector<int> listed;
+  for (const int li : c.landmarks) {
+    if (input.landmarks[static_cast<std::size_t>(li)].deviation <= c.true_max + req.above) break;
+    listed.push_back(li);
+  }
+  for (const int li : near_landmarks)
+    if (std::find(listed.begin(), listed.end(), li) == listed.end()) listed.push_back(li);
+  for (const int li : listed) {
+    const MappingLandmark& l = input.landmarks[static_cast<std::size_t>(li)];
+    const auto t = truth.find(l.id);
+    const Eigen::Vector3d adjusted_M = model_to_true * (Mg * l.p_g);
+    const Eigen::Vector3d true_M = t != truth.end() ? true_Mg * t->second->p : Eigen::Vector3d::Constant(std::nan(""));
+    std::printf(
+        "  landmark %lld: adjusted h %.3f m; true point on %s, h %.3f m, %.3f m from the adjusted one; %zu views\n",
+        static_cast<long long>(l.id), l.deviation,
+        t != truth.end() ? (t->second->object.empty() ? "hull" : t->second->object.c_str()) : "?",
+        t != truth.end() ? t->second->deviation : std::nan(""), (adjusted_M - true_M).norm(), obs[l.id].size());
+    std::vector<Eigen::Vector3d> dirs;
+    for (const FeatureObservation* f : obs[l.id]) {
+      const auto p = pose_of.find(f->keyframe);
+      if (p == pose_of.end()) continue;
+      const Pose cam = TrueCameraPoseFromTruth(b, p->second, false);
+      const Eigen::Vector3d d = cam.rotation() * rig.top.Unproject(f->top).normalized();
+      const RayHit h = scene->index().Raycast(cam.translation(), d);
+      // The hit's jump under a 2 px step of the pixel (largest over 8 directions).
+      double jump = 0;
+      for (int a = 0; a < 8; ++a) {
+        const Eigen::Vector2d uv = f->top + 2.0 * Eigen::Vector2d(std::cos(a * M_PI / 4), std::sin(a * M_PI / 4));
+        const RayHit g = scene->index().Raycast(cam.translation(), cam.rotation() * rig.top.Unproject(uv).normalized());
+        if (g.hit && h.hit) jump = std::max(jump, std::abs(g.range - h.range));
+      }
+      const Eigen::Vector3d tc = cam.Inverse() * true_M;
+      const double true_reprojection = (rig.top.Project(tc) - f->top).norm();
+      // Is the true point visible from this camera?
+      const Eigen::Vector3d to = true_M - cam.translation();
+      const RayHit v = scene->index().Raycast(cam.translation(), to.normalized());
+      const bool visible = v.hit && v.range > to.norm() - 0.005;
+      double adjusted_residual = std::nan("");
+      if (auto k = adjusted_kf.find(f->keyframe); k != adjusted_kf.end())
+        adjusted_residual = (rig.top.Project(k->second->x_g_cT.Inverse() * l.p_g) - f->top).norm();
+      dirs.push_back(to.normalized());
+      std::printf(
+          "    kf %5lld px (%7.2f, %7.2f)%s: pixel shows %s at h %.3f m, %.3f m from the true point, depth %.3f m, "
+          "jump at 2 px %.3f m; true point reprojects %.2f px off%s; adjusted residual %.2f px\n",
+          static_cast<long long>(f->keyframe), f->top.x(), f->top.y(), f->has_bottom ? " +bottom" : "", what(h).c_str(),
+          h.hit ? cad.SignedDistance(h.point) : std::nan(""), h.hit ? (h.point - true_M).norm() : std::nan(""), h.range,
+          jump, true_reprojection, visible ? "" : " (occluded)", adjusted_residual);
+    }
+    double angle = 0;
+    for (std::size_t a = 0; a < dirs.size(); ++a)
+      for (std::size_t e = a + 1; e < dirs.size(); ++e)
+        angle = std::max(angle, std::acos(std::clamp(dirs[a].dot(dirs[e]), -1.0, 1.0)));
+    std::printf("    largest true triangulation angle %.1f deg\n", angle * 180 / M_PI);
+  }
+}
+
 // Per true object (mapping/object_height_check.h: the fused model's height
 // field over each true footprint, the model moved into the true M by the
 // landmarks' fit): found when a detected object has a vertex in its region;
 // a detected object in no true object's region is false.
 ObjectScore ScoreObjects(const PipelineInputs& in, const PipelineResult& r, const SimulatedSurvey& sim,
-                         double min_height) {
+                         double min_height, const TraceRequest& trace) {
   const MappingResult& m = *r.mapping;
   const MeshIndex cad(sim.cad);
+  const MappingInput input = MappingInputFromAdjustment(r.adjustment, in.bundle);
+  const Pose model_to_true = GaugeFitToTruth(in.bundle, r.adjustment);
   const std::vector<ObjectHeightCheck> checks = CheckObjectHeights(
-      m.model, m.objects, MappingInputFromAdjustment(r.adjustment, in.bundle), GaugeFitToTruth(in.bundle, r.adjustment),
-      sim.bundle.truth->objects, sim.object_meshes, cad, &m.keyframes);
+      m.model, m.objects, input, model_to_true, sim.bundle.truth->objects, sim.object_meshes, cad, &m.keyframes);
+  if (!trace.object.empty() && in.bundle.features_from_images) {
+    for (const ObjectHeightCheck& c : checks) {
+      if (c.id != trace.object) continue;
+      for (const TrueObject& o : sim.bundle.truth->objects)
+        if (o.id == c.id) TraceObject(in, input, c, o, m.model, model_to_true, trace);
+    }
+  }
   std::printf("%s", ObjectHeightTable(checks, min_height, 0.01).c_str());
   const FoundObjects found = CountFoundObjects(checks, m.objects, min_height);
   std::printf("objects of at least %.2f m: %s", min_height, found.ToString().c_str());
@@ -95,7 +248,7 @@ struct RunFigures {
 };
 
 RunFigures RunOne(const std::string& bundle_dir, const PipelineOptions& o, const SimulatedSurvey& sim,
-                  double min_height, const char* label, bool reuse) {
+                  double min_height, const char* label, bool reuse, const TraceRequest& trace) {
   std::printf("\n== %s (%s)\n", label, bundle_dir.c_str());
   RunFigures f;
   NullProgress quiet;
@@ -128,7 +281,7 @@ RunFigures RunOne(const std::string& bundle_dir, const PipelineOptions& o, const
   }
   f.evaluation = *r.evaluation;
   std::printf("%s", f.evaluation.ToString().c_str());
-  f.objects = ScoreObjects(in, r, sim, min_height);
+  f.objects = ScoreObjects(in, r, sim, min_height, trace);
   return f;
 }
 
@@ -141,6 +294,7 @@ int main(int argc, char** argv) {
   double camera_scale = 0.5, tau = 0.06, min_height = 0.06;
   int seed = 1, threads = 2, min_features = -1;
   double grow_height = -1;
+  TraceRequest trace;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -166,12 +320,17 @@ int main(int argc, char** argv) {
       keep = value();
     } else if (a == "--grow-height") {
       grow_height = std::atof(value().c_str());
+    } else if (a == "--trace") {
+      trace.object = value();
+    } else if (a == "--trace-above") {
+      trace.above = std::atof(value().c_str());
     } else if (a == "--reuse") {
       reuse = true;
     } else {
       std::fprintf(stderr,
                    "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
-                   "[--threads N] [--min-features N] [--grow-height M] [--keep DIR [--reuse]]\n");
+                   "[--threads N] [--min-features N] [--grow-height M] [--keep DIR [--reuse]] "
+                   "[--trace OBJECT [--trace-above M]]\n");
       return 2;
     }
   }
@@ -209,8 +368,8 @@ int main(int argc, char** argv) {
   o.mapping.tau = tau;
   if (min_features >= 0) o.mapping.object_min_features = min_features;
   if (grow_height >= 0) o.mapping.shape_grow_height = grow_height;
-  const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse);
-  const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse);
+  const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse, trace);
+  const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse, trace);
 
   auto row = [](const char* what, const RunFigures& f) {
     std::printf("| %s | %zu | %.2f %% | %.4f m | %.4f m | %d of %d | %d | %d | %+.3f m | %+.3f m | %.3f m | %.0f s |\n",
