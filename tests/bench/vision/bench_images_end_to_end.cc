@@ -14,6 +14,7 @@
 //
 //   bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N]
 //                           [--tau M] [--threads N] [--min-features N] [--grow-height M]
+//                           [--peak-fit | --no-peak-fit]
 //                           [--keep DIR [--reuse]]
 // --keep DIR keeps both bundles (DIR/given, DIR/images; the front end's
 // features.csv and match-graph.csv written into DIR/images); --reuse then
@@ -21,7 +22,8 @@
 // --min-features N sets MappingOptions::object_min_features (0: the area
 // test alone, the detection before small supported objects were kept);
 // --grow-height M the level Algorithm 1's hysteresis grows clusters down
-// to (MappingOptions::shape_grow_height; a height >= tau turns it off).
+// to (MappingOptions::shape_grow_height; a height >= tau turns it off);
+// --peak-fit / --no-peak-fit turn MappingOptions::peak_fit on or off.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -141,6 +143,7 @@ int main(int argc, char** argv) {
   double camera_scale = 0.5, tau = 0.06, min_height = 0.06;
   int seed = 1, threads = 2, min_features = -1;
   double grow_height = -1;
+  int peak_fit = -1;  // -1: MappingOptions' default
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -166,12 +169,17 @@ int main(int argc, char** argv) {
       keep = value();
     } else if (a == "--grow-height") {
       grow_height = std::atof(value().c_str());
+    } else if (a == "--peak-fit") {
+      peak_fit = 1;
+    } else if (a == "--no-peak-fit") {
+      peak_fit = 0;
     } else if (a == "--reuse") {
       reuse = true;
     } else {
-      std::fprintf(stderr,
-                   "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
-                   "[--threads N] [--min-features N] [--grow-height M] [--keep DIR [--reuse]]\n");
+      std::fprintf(
+          stderr,
+          "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
+          "[--threads N] [--min-features N] [--grow-height M] [--peak-fit | --no-peak-fit] [--keep DIR [--reuse]]\n");
       return 2;
     }
   }
@@ -209,6 +217,7 @@ int main(int argc, char** argv) {
   o.mapping.tau = tau;
   if (min_features >= 0) o.mapping.object_min_features = min_features;
   if (grow_height >= 0) o.mapping.shape_grow_height = grow_height;
+  if (peak_fit >= 0) o.mapping.peak_fit = peak_fit == 1;
   const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse);
   const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse);
 
