@@ -45,8 +45,8 @@ options:
   --support N          hits that must reach a height (default 2)
   --peak-band M        hits averaged within M below it (default 0.005)
   --peak-fit           estimate each lump's apex beyond its highest feature
-                       by a local quadric fit (--fusion normal only; default
-                       off; --no-peak-fit: off)
+                       by a local quadric fit (--fusion normal only; the
+                       default; --no-peak-fit: off)
   --stations N         stations along the hull (default 20)
   --bundle DIR         survey bundle (default: the one adjustment.json names)
   --mesh PATH          prior mesh (default: the one adjustment.json names)

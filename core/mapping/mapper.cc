@@ -220,6 +220,7 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
     }
     fused.vertices[vi] = prior.vertices[vi] + peak.height * peak.normal;
     peak.placement = "placed";
+    peak.vertex = v;
     ++s.peaks_placed;
   }
   s.seconds.fusion = Since(t);

@@ -56,7 +56,7 @@ PeakFitOptions PeakFitOptionsFor(const MappingOptions& options) {
 }
 
 bool FitQuadricApex(const std::vector<Eigen::Vector3d>& uvh, bool isotropic, Eigen::Vector2d* apex_uv, double* apex_h,
-                    double* rms, std::string* reason, const Eigen::Vector2d* query, double* h_query) {
+                    double* rms, std::string* reason, std::vector<double>* fitted) {
   const Eigen::Index n = static_cast<Eigen::Index>(uvh.size());
   const Eigen::Index m = isotropic ? 4 : 6;
   if (n < m + 1) {
@@ -104,10 +104,9 @@ bool FitQuadricApex(const std::vector<Eigen::Vector3d>& uvh, bool isotropic, Eig
   const Eigen::Vector2d a = -H.inverse() * g;
   *apex_h = x(0) + 0.5 * g.dot(a);
   *apex_uv = a * s;
-  if (query && h_query) {
-    const double u = query->x() / s, v = query->y() / s;
-    *h_query = isotropic ? x(0) + x(1) * u + x(2) * v + x(3) * (u * u + v * v)
-                         : x(0) + x(1) * u + x(2) * v + x(3) * u * u + x(4) * u * v + x(5) * v * v;
+  if (fitted) {
+    const Eigen::VectorXd f = A * x;
+    fitted->assign(f.data(), f.data() + f.size());
   }
   std::vector<Eigen::Vector2d> uv;
   for (const auto& p : uvh) uv.push_back(p.head<2>());
@@ -209,26 +208,30 @@ std::vector<FittedPeak> FitPeaks(const MappingInput& input, const MeshIndex& cad
       reject("features in fewer than " + std::to_string(o.min_keyframes) + " keyframes' shapes");
       continue;
     }
-    // Each fit gives two bounds on the apex: its own apex, and the highest
-    // of its features raised by the rise the fit predicts from that
-    // feature's position to the apex (its curvature times the distance:
-    // where features are dense the top one lies near the apex and is raised
-    // by little). Its estimate is the lower of the two.
+    // Each fit gives two bounds on the apex: its own apex, and the feature
+    // nearest that apex raised by the rise the fit predicts from it to the
+    // apex (the fit's curvature times their distance: where features are
+    // dense one lies at the apex and is raised by little, so the fit cannot
+    // lift a well-measured top by its misfit). Its estimate is the lower.
     struct Fit {
       Eigen::Vector2d apex_uv;
       double apex = 0, rms = 0, estimate = 0, rise = 0;
     };
     std::string why;
     auto fit = [&](const std::vector<Eigen::Vector3d>& set, Fit* f) {
-      std::size_t top_i = 0;
-      for (std::size_t i = 1; i < set.size(); ++i) {
-        if (set[i].z() > set[top_i].z()) top_i = i;
+      std::vector<double> fitted;
+      if (!FitQuadricApex(set, o.isotropic, &f->apex_uv, &f->apex, &f->rms, &why, &fitted)) return false;
+      // The features nearest the apex, each raised by the rise the fit
+      // predicts from it to the apex.
+      std::vector<std::pair<double, std::size_t>> near;
+      for (std::size_t i = 0; i < set.size(); ++i) near.push_back({(set[i].head<2>() - f->apex_uv).norm(), i});
+      std::sort(near.begin(), near.end());
+      f->estimate = f->apex;
+      for (std::size_t k = 0; k < near.size() && static_cast<int>(k) < o.near_features; ++k) {
+        const std::size_t i = near[k].second;
+        f->estimate = std::min(f->estimate, set[i].z() + std::max(0.0, f->apex - fitted[i]));
       }
-      const Eigen::Vector2d top_uv = set[top_i].head<2>();
-      double at_top = 0;
-      if (!FitQuadricApex(set, o.isotropic, &f->apex_uv, &f->apex, &f->rms, &why, &top_uv, &at_top)) return false;
-      f->rise = std::max(0.0, f->apex - at_top);
-      f->estimate = std::min(f->apex, set[top_i].z() + f->rise);
+      f->rise = f->apex - fitted[near.front().second];
       return true;
     };
     Fit all;
