@@ -167,9 +167,9 @@ std::vector<FittedPeak> FitPeaks(const MappingInput& input, const MeshIndex& cad
       const Eigen::Vector3d q = p_M[static_cast<std::size_t>(l)] - cp.point;
       const Eigen::Vector2d uv(q.dot(e1), q.dot(e2));
       if (uv.norm() > o.radius) continue;
+      if (supported(static_cast<std::size_t>(l))) covered[static_cast<std::size_t>(l)] = 1;  // not a local maximum
       if (o.cap > 0 && input.landmarks[static_cast<std::size_t>(l)].deviation < input.landmarks[t].deviation - o.cap)
         continue;
-      if (supported(static_cast<std::size_t>(l))) covered[static_cast<std::size_t>(l)] = 1;
       uvh.emplace_back(uv.x(), uv.y(), input.landmarks[static_cast<std::size_t>(l)].deviation);
       members.push_back(l);
     }
