@@ -44,6 +44,9 @@ options:
                        (the mean of the camera rays' hits)
   --support N          hits that must reach a height (default 2)
   --peak-band M        hits averaged within M below it (default 0.005)
+  --peak-fit           estimate each lump's apex beyond its highest feature
+                       by a local quadric fit (--fusion normal only; the
+                       default; --no-peak-fit: off)
   --stations N         stations along the hull (default 20)
   --bundle DIR         survey bundle (default: the one adjustment.json names)
   --mesh PATH          prior mesh (default: the one adjustment.json names)
@@ -56,14 +59,15 @@ See docs/mapping.md for what the parameters do.
 }  // namespace
 
 int RunMap(const CommandArgs& argv) {
-  Args a(argv, {"quiet", "help"});
+  Args a(argv, {"quiet", "help", "peak-fit", "no-peak-fit"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"out",       "tau",          "grow-height", "alpha",       "eps",           "min-points", "h-min",
-               "min-area",  "min-features", "min-views",   "refine-edge", "fusion-radius", "fusion",     "support",
-               "peak-band", "stations",     "bundle",      "mesh",        "mesh-scale",    "threads",    "quiet"});
+  a.AllowOnly({"out",        "tau",      "grow-height",  "alpha",     "eps",         "min-points",
+               "h-min",      "min-area", "min-features", "min-views", "refine-edge", "fusion-radius",
+               "fusion",     "support",  "peak-band",    "stations",  "bundle",      "mesh",
+               "mesh-scale", "threads",  "quiet",        "peak-fit",  "no-peak-fit"});
   if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
   const std::string results = a.positionals()[0];
   const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
@@ -88,6 +92,9 @@ int RunMap(const CommandArgs& argv) {
   o.fusion_along_normal = rule == "normal";
   o.fusion_support = static_cast<int>(a.GetInt("support", o.fusion_support));
   o.fusion_peak_band = a.GetDouble("peak-band", o.fusion_peak_band);
+  if (a.Has("peak-fit") && a.Has("no-peak-fit")) throw UsageError("--peak-fit and --no-peak-fit contradict each other");
+  if (a.Has("peak-fit")) o.peak_fit = true;
+  if (a.Has("no-peak-fit")) o.peak_fit = false;
   o.stations = static_cast<int>(a.GetInt("stations", o.stations));
   o.num_threads = static_cast<int>(a.GetInt("threads", 0));
   o.Check();

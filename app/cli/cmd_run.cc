@@ -27,6 +27,7 @@ options:
   --sigma0 M --sigma1 M
   --compare-models     also run the two other surface models
   --tau M --grow-height M --alpha M --eps M --min-points N
+  --peak-fit | --no-peak-fit
                        mapping (see 'map --help')
   --max-iterations N   --threads N
   --covariance M       landmark covariances and sigma of h: full (default),
@@ -37,13 +38,14 @@ options:
 }  // namespace
 
 int RunPipeline(const CommandArgs& argv) {
-  Args a(argv, {"demo", "compare-models", "quiet"});
+  Args a(argv, {"demo", "compare-models", "quiet", "peak-fit", "no-peak-fit"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
   a.AllowOnly({"demo", "mesh", "mesh-scale", "model", "sigma0", "sigma1", "compare-models", "tau", "grow-height",
-               "alpha", "eps", "min-points", "max-iterations", "threads", "covariance", "quiet", "out"});
+               "alpha", "eps", "min-points", "max-iterations", "threads", "covariance", "quiet", "out", "peak-fit",
+               "no-peak-fit"});
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
   CheckOutputFolder(out);
@@ -71,6 +73,9 @@ int RunPipeline(const CommandArgs& argv) {
   o.mapping.alpha = a.GetDouble("alpha", o.mapping.alpha);
   o.mapping.dbscan_eps = a.GetDouble("eps", o.mapping.dbscan_eps);
   o.mapping.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.mapping.dbscan_min_points));
+  if (a.Has("peak-fit") && a.Has("no-peak-fit")) throw UsageError("--peak-fit and --no-peak-fit contradict each other");
+  if (a.Has("peak-fit")) o.mapping.peak_fit = true;
+  if (a.Has("no-peak-fit")) o.mapping.peak_fit = false;
   o.Check();
   const double start = a.Has("demo") ? 0.05 : 0.0;
   // A version 2 bundle without features.csv: the visual front end first.

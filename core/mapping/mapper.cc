@@ -14,6 +14,7 @@
 #include "mapping/hull_zones.h"
 #include "mapping/inspection.h"
 #include "mapping/mesh_refinement.h"
+#include "mapping/peak_fit.h"
 #include "mapping/point_cone_tree.h"
 #include "mapping/refinement_region.h"
 #include "mapping/shape_detection.h"
@@ -26,11 +27,14 @@ using Clock = std::chrono::steady_clock;
 
 double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// Every option Algorithm 1 reads (DetectShapes).
 struct ShapeKey {
-  double tau, alpha, eps;
+  double tau, alpha, eps, grow_height;
   int min_points;
+  bool keep_peaks;  // AdmitPeakPoints
   bool operator==(const ShapeKey& o) const {
-    return tau == o.tau && alpha == o.alpha && eps == o.eps && min_points == o.min_points;
+    return tau == o.tau && alpha == o.alpha && eps == o.eps && grow_height == o.grow_height &&
+           min_points == o.min_points && keep_peaks == o.keep_peaks;
   }
 };
 
@@ -127,7 +131,7 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   // Algorithm 1 per keyframe.
   auto t = Clock::now();
   progress.Update(0.0, "detecting shapes (Algorithm 1)");
-  const ShapeKey sk{o.tau, o.alpha, o.dbscan_eps, o.dbscan_min_points};
+  const ShapeKey sk{o.tau, o.alpha, o.dbscan_eps, o.shape_grow_height, o.dbscan_min_points, o.fusion_keep_peaks};
   if (!shape_key || !(*shape_key == sk)) {
     shape_key.reset();
     shapes = DetectAllShapes(input, o, progress);
@@ -161,11 +165,24 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   s.region_cells = refined->refined.region.num_cells();
   s.refined_area = refined->refined.refined_area;
   snapped.reset();
+  // Lumps' apexes beyond their highest features (peak_fit.h): a vertex is
+  // moved under each accepted apex, before the features' vertices.
+  std::vector<int> apex_vertex;
+  if (o.fusion_along_normal && o.fusion_keep_peaks && o.peak_fit) {
+    r.peaks = FitPeaks(input, *cad_index, shapes, PeakFitOptionsFor(o));
+  }
+  std::vector<Eigen::Vector3d> apex_feet;
+  std::vector<std::size_t> apex_peak;  // per apex foot: index into r.peaks
+  for (std::size_t i = 0; i < r.peaks.size(); ++i) {
+    if (!r.peaks[i].accepted) continue;
+    apex_feet.push_back(r.peaks[i].foot);
+    apex_peak.push_back(i);
+  }
   if (o.fusion_along_normal && o.fusion_keep_peaks) {
     auto next = std::make_unique<Snapped>();
     next->mesh = refined->refined.mesh;
     SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, input.x_gM.Inverse(), o.fusion_support,
-                           o.object_min_height, 0.6 * o.refine_edge);
+                           o.object_min_height, 0.6 * o.refine_edge, apex_feet, &apex_vertex);
     next->tree = std::make_unique<PointConeTree>(next->mesh.vertices);
     next->index = std::make_unique<PointIndex>(next->mesh.vertices);
     snapped = std::move(next);
@@ -179,7 +196,33 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
   SubProgress fusion_progress(progress, 0.5, 0.8);
   const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band, o.fusion_along_normal};
-  const FusionResult fused = FuseShapes(prior, prior_tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
+  FusionResult fused = FuseShapes(prior, prior_tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
+  // The accepted apexes: the vertex under each rises to it where the fusion
+  // moved that vertex (the shapes of `fusion_support` views reach it) and
+  // left it lower.
+  for (std::size_t i = 0; i < apex_feet.size(); ++i) {
+    FittedPeak& peak = r.peaks[apex_peak[i]];
+    ++s.peaks_fitted;
+    const int v = apex_vertex.empty() ? -1 : apex_vertex[i];
+    if (v < 0) {
+      peak.placement = "no vertex could be moved under it";
+      continue;
+    }
+    const std::size_t vi = static_cast<std::size_t>(v);
+    if (fused.support[vi] == 0) {
+      peak.placement = "its vertex is not fused";
+      continue;
+    }
+    const double h = (fused.vertices[vi] - prior.vertices[vi]).dot(peak.normal);
+    if (!(h < peak.height)) {
+      peak.placement = "the fused vertex is already higher";
+      continue;
+    }
+    fused.vertices[vi] = prior.vertices[vi] + peak.height * peak.normal;
+    peak.placement = "placed";
+    peak.vertex = v;
+    ++s.peaks_placed;
+  }
   s.seconds.fusion = Since(t);
 
   // Every vertex's signed distance to the CAD surface (fused or not: a

@@ -56,6 +56,16 @@ struct MappingOptions {
   // spreads a narrow peak over several vertices). docs/mapping.md, "Keeping
   // peaks".
   bool fusion_along_normal = true;
+  // A lump's apex beyond its highest feature (with the fusion along normals
+  // and keep_peaks; peak_fit.h): around each local maximum of the supported
+  // features a quadric height model is fitted to the features within a few
+  // centimetres; an apex that passes every test (concave, inside the
+  // features, small residuals, at most 3.5 cm above the features, and the
+  // same without any one feature: the lowest of those fits is taken) raises
+  // the fused vertex under it where the fusion moved that vertex. On by
+  // default: on every measured survey it moved model maxima toward the
+  // truth and none above it (docs/mapping.md, "Fitting a lump's apex").
+  bool peak_fit = true;
   // Target edge length of the isotropic remeshing where shapes depart from
   // the CAD surface.
   double refine_edge = 0.03;

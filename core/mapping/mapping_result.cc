@@ -42,6 +42,7 @@ Json OptionsJson(const MappingOptions& o) {
   j.Set("fusion_support", o.fusion_support);
   j.Set("fusion_peak_band", o.fusion_peak_band);
   j.Set("fusion_along_normal", o.fusion_along_normal);
+  j.Set("peak_fit", o.peak_fit);
   j.Set("refine_edge", o.refine_edge);
   j.Set("refine_threshold", o.refine_threshold);
   j.Set("refine_margin", o.refine_margin);
@@ -176,6 +177,8 @@ void WriteSummary(const MappingResult& r, const std::string& dir) {
   sum.Set("model_vertices", Count(s.model_vertices));
   sum.Set("model_faces", Count(s.model_faces));
   sum.Set("vertices_fused", Count(s.vertices_fused));
+  sum.Set("peaks_fitted", Count(s.peaks_fitted));
+  sum.Set("peaks_placed", Count(s.peaks_placed));
   sum.Set("fusion_hits", Count(s.fusion_hits));
   sum.Set("region_cells", Count(s.region_cells));
   sum.Set("refined_area", s.refined_area);

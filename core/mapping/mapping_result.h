@@ -19,6 +19,7 @@
 #include "mapping/fouling.h"
 #include "mapping/hull_zones.h"
 #include "mapping/mapping_options.h"
+#include "mapping/peak_fit.h"
 #include "mapping/shape_detection.h"
 
 namespace hull {
@@ -34,9 +35,10 @@ struct MappingSummary {
   std::size_t shapes = 0, shape_triangles = 0;
   std::size_t model_vertices = 0, model_faces = 0;
   std::size_t vertices_fused = 0, fusion_hits = 0;
-  std::size_t region_cells = 0;                                // cells of the region the cached mesh was refined for
-  double refined_area = 0;                                     // m^2 remeshed to refine_edge
-  bool refinement_reused = false;                              // the cached refined mesh served this run
+  std::size_t peaks_fitted = 0, peaks_placed = 0;  // apexes accepted by the peak fit, and put into the model
+  std::size_t region_cells = 0;                    // cells of the region the cached mesh was refined for
+  double refined_area = 0;                         // m^2 remeshed to refine_edge
+  bool refinement_reused = false;                  // the cached refined mesh served this run
   double hull_area = 0, inspected_area = 0, covered_area = 0;  // m^2 (zones only: decks excluded)
   MappingTimings seconds;
 };
@@ -53,6 +55,9 @@ struct MappingResult {
   // Algorithm 2's M_new in M: vertex scalars "deviation" (signed distance to
   // the CAD surface, m) and "fusions" (hits of eq. 15).
   TriangleMesh model;
+  // The peak fit's candidates (MappingOptions::peak_fit; peak_fit.h),
+  // accepted or not, with what the fusion made of the accepted ones.
+  std::vector<FittedPeak> peaks;
   std::vector<DetectedObject> objects;
   std::vector<ZoneAssessment> zones;
   MappingSummary summary;

@@ -113,7 +113,8 @@ Eigen::Vector3d CombineHits(const std::vector<Eigen::Vector3d>& hits, const Eige
 
 int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
                            const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
-                           double max_move) {
+                           double max_move, const std::vector<Eigen::Vector3d>& apex_feet,
+                           std::vector<int>* apex_vertex) {
   // Per landmark: the keyframes whose shapes hold it, its deviation and
   // position (in g).
   struct Feature {
@@ -162,11 +163,10 @@ int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, c
   const double cos_max_turn = std::cos(M_PI / 4);
   std::vector<char> moved(nv, 0);
   int count = 0;
-  for (const auto& [neg_deviation, l] : order) {
-    (void)neg_deviation;
-    const Eigen::Vector3d foot = cad.Closest(x_Mg * features.at(l).p_g).point;
+  // Moves the vertex nearest `foot` onto it; returns it, or -1.
+  auto snap = [&](const Eigen::Vector3d& foot) -> int {
     const auto [v, d2] = prior_index.NearestOne(foot);  // squared distance
-    if (v < 0 || moved[static_cast<std::size_t>(v)] || !(d2 <= max_move * max_move)) continue;
+    if (v < 0 || moved[static_cast<std::size_t>(v)] || !(d2 <= max_move * max_move)) return -1;
     const std::size_t vi = static_cast<std::size_t>(v);
     const Eigen::Vector3d old = prior.vertices[vi];
     std::vector<Eigen::Vector3d> before;
@@ -180,10 +180,20 @@ int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, c
     }
     if (!ok) {
       prior.vertices[vi] = old;
-      continue;
+      return -1;
     }
     moved[vi] = 1;
     ++count;
+    return v;
+  };
+  if (apex_vertex) apex_vertex->assign(apex_feet.size(), -1);
+  for (std::size_t i = 0; i < apex_feet.size(); ++i) {
+    const int v = snap(apex_feet[i]);
+    if (apex_vertex) (*apex_vertex)[i] = v;
+  }
+  for (const auto& [neg_deviation, l] : order) {
+    (void)neg_deviation;
+    snap(cad.Closest(x_Mg * features.at(l).p_g).point);
   }
   prior.ComputeNormals();
   return count;

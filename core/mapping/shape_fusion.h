@@ -106,9 +106,14 @@ FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<P
 // normal line through it meets the feature itself. prior_index indexes
 // prior.vertices as given; normals are recomputed. Deterministic. Returns
 // the number of vertices moved.
+//
+// apex_feet (in M, on the CAD): fitted apexes of lumps (FitPeaks,
+// peak_fit.h), served before every feature, in their order, the same way;
+// *apex_vertex gets the vertex moved onto each (-1: none could be).
 int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
                            const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
-                           double max_move);
+                           double max_move, const std::vector<Eigen::Vector3d>& apex_feet = {},
+                           std::vector<int>* apex_vertex = nullptr);
 
 // A vertex's hits (in the order the loops meet them) combined by `rule`;
 // prior/normal: the prior vertex and its outward normal. Sets *support.

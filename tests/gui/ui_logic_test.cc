@@ -448,6 +448,17 @@ class UiLogicTest : public QObject {
                         [](const ParameterError& e) { return e.key == QLatin1String("fe_track_check_max_height"); }));
   }
 
+  // The peak fit from the parameter panel: off by default (MappingOptions'),
+  // "on" reaches MappingOptions.
+  void peakFitParameterReachesTheMapping() {
+    ParameterValues values = DefaultValues(DefaultParameterTable());
+    QCOMPARE(MappingOptionsFrom(values).peak_fit, hull::MappingOptions().peak_fit);
+    values.insert(QStringLiteral("peak_fit"), QStringLiteral("on"));
+    QVERIFY(MappingOptionsFrom(values).peak_fit);
+    values.insert(QStringLiteral("peak_fit"), QStringLiteral("off"));
+    QVERIFY(!MappingOptionsFrom(values).peak_fit);
+  }
+
   void commandLine() {
     LaunchOptions o = ParseCommandLine({QStringLiteral("--demo")});
     QVERIFY(o.demo && o.error.isEmpty() && o.paths.isEmpty());

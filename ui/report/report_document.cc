@@ -253,6 +253,9 @@ Section MethodSection(const ReportInputs& in) {
       row("Clusters grown above", Metres(m.shape_grow_height),
           "hysteresis: clusters grow through features above this and are kept when one exceeds τ");
     }
+    if (m.peak_fit) {
+      row("Peak fit", "on", "each lump's apex estimated beyond its highest feature by a local quadric fit");
+    }
     row("α", Metres(m.alpha), "alpha-shape radius");
     row("ε", Metres(m.dbscan_eps), "DBSCAN neighbourhood radius");
     row("Min points", std::to_string(m.dbscan_min_points), "DBSCAN core-point count");

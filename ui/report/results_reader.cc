@@ -78,6 +78,12 @@ MappingResult ReadMapping(const fs::path& dir, const TriangleMesh& cad, const Ad
   m.options.tau = o.Number("tau");
   // Absent from results written before the hysteresis: each feature was cut at tau.
   m.options.shape_grow_height = o.NumberOr("shape_grow_height", m.options.tau);
+  // Absent from results written before the peak fit: off.
+  if (o.Has("peak_fit")) {
+    const Json& v = o.Required("peak_fit");
+    if (!v.is_bool()) o.Fail(v, "peak_fit", "expected true or false");
+    m.options.peak_fit = v.as_bool();
+  }
   m.options.alpha = o.Number("alpha");
   m.options.dbscan_eps = o.Number("dbscan_eps");
   m.options.dbscan_min_points = static_cast<int>(o.Integer("dbscan_min_points"));

@@ -200,6 +200,12 @@ ParameterTable MakeTable() {
                    QStringLiteral("Hysteresis: a cluster grows through features standing above this and is kept "
                                   "when one of them exceeds τ, so a narrow lump whose top exceeds τ is shaped over "
                                   "its whole footprint. At or above τ: off (each feature cut at τ).")));
+  t.push_back(Choice(QStringLiteral("peak_fit"), kMap, Stage::kMapping, QStringLiteral("Peak fit"),
+                     {QStringLiteral("on"), QStringLiteral("off")}, {QStringLiteral("On"), QStringLiteral("Off")},
+                     m.peak_fit ? 0 : 1,
+                     QStringLiteral("Estimates each lump's apex beyond its highest feature by a local quadric fit "
+                                    "of the features around it, accepted only when concave, inside the features, "
+                                    "close to them and the same without any one feature (fusion along normals).")));
   t.push_back(Real(QStringLiteral("alpha"), kMap, Stage::kMapping, QStringLiteral("α (alpha shapes)"), 0.005, 2.0,
                    m.alpha, 3, 0.01, QStringLiteral("m"),
                    QStringLiteral("Radius of the alpha shapes meshed over each cluster: larger values bridge wider "
@@ -373,6 +379,9 @@ MappingOptions MappingOptionsFrom(const ParameterValues& values) {
   MappingOptions o;
   o.tau = values.value(QStringLiteral("tau"), o.tau).toDouble();
   o.shape_grow_height = values.value(QStringLiteral("shape_grow_height"), o.shape_grow_height).toDouble();
+  o.peak_fit =
+      values.value(QStringLiteral("peak_fit"), o.peak_fit ? QStringLiteral("on") : QStringLiteral("off")).toString() ==
+      QLatin1String("on");
   o.alpha = values.value(QStringLiteral("alpha"), o.alpha).toDouble();
   o.dbscan_eps = values.value(QStringLiteral("dbscan_eps"), o.dbscan_eps).toDouble();
   o.dbscan_min_points = values.value(QStringLiteral("dbscan_min_points"), o.dbscan_min_points).toInt();

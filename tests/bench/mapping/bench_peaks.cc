@@ -2,6 +2,7 @@
 // docs/benchmarks.md, "Peaks per true object"):
 //   bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT]
 //               [--fusion normal|peaks|mean] [--min-features N] [--tau M] [--grow-height M]
+//               [--peak-fit | --no-peak-fit]
 //
 // The preset is simulated and written as a bundle (as `hullinspect-cli
 // simulate` writes it), read back and run through the whole pipeline with
@@ -19,7 +20,10 @@
 // every new, removed and >= 3 cm grown object reported, none false, the
 // growth error. --keep DIR keeps the bundles and adjustments there; --reuse
 // then maps the kept adjustments again (a change to the mapping in seconds).
-// --fusion chooses the fusion as `hullinspect-cli map --fusion` does.
+// --fusion chooses the fusion as `hullinspect-cli map --fusion` does;
+// --peak-fit / --no-peak-fit turn MappingOptions::peak_fit on or off (the
+// fitted apexes over each true object are listed under the table).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -153,6 +157,20 @@ Survey RunOne(const std::string& name, const hull::SurveySimulationOptions& so, 
                                       s.sim.object_meshes, cad, &m.keyframes);
   std::printf("%s", hull::ObjectHeightTable(s.checks, 0.06, 0.01).c_str());
   std::printf("objects of at least 0.06 m: %s", hull::CountFoundObjects(s.checks, m.objects, 0.06).ToString().c_str());
+  if (!m.peaks.empty()) {
+    // The peak fit's candidates over each true object.
+    std::printf(
+        "\n| object | top feature | apex (all features) | apex (lowest leave-one-out) | features | keyframes | rms "
+        "| outcome |\n|---|---:|---:|---:|---:|---:|---:|---|\n");
+    for (const auto& c : s.checks) {
+      for (const auto& pk : m.peaks) {
+        if (std::find(c.landmarks.begin(), c.landmarks.end(), pk.landmark) == c.landmarks.end()) continue;
+        std::printf("| %s | %.3f | %.3f | %.3f | %d | %d | %.4f | %s |\n", c.id.c_str(), pk.top, pk.full_height,
+                    pk.height, pk.features, pk.keyframes, pk.rms,
+                    pk.accepted ? pk.placement.c_str() : pk.reason.c_str());
+      }
+    }
+  }
   if (!explain.empty()) Explain(s.checks, explain, in_map, m);
   return s;
 }
@@ -274,6 +292,7 @@ int main(int argc, char** argv) {
   int threads = 0, min_features = -1;
   double tau = -1, grow_height = -1;
   bool pair = false, reuse = false;
+  int peak_fit = -1;  // -1: MappingOptions' default
   std::string explain;
   std::string preset = "demo", keep, fusion = "normal";
   for (int i = 1; i < argc; ++i) {
@@ -295,6 +314,10 @@ int main(int argc, char** argv) {
                (!std::strcmp(argv[i + 1], "normal") || !std::strcmp(argv[i + 1], "peaks") ||
                 !std::strcmp(argv[i + 1], "mean"))) {
       fusion = argv[++i];
+    } else if (!std::strcmp(argv[i], "--peak-fit")) {
+      peak_fit = 1;
+    } else if (!std::strcmp(argv[i], "--no-peak-fit")) {
+      peak_fit = 0;
     } else if (!std::strcmp(argv[i], "--reuse")) {
       reuse = true;
     } else if (!std::strcmp(argv[i], "--pair")) {
@@ -303,7 +326,7 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: bench_peaks [--preset demo|mono] [--pair] [--threads N] [--keep DIR [--reuse]] [--explain OBJECT] "
-          "[--fusion normal|peaks|mean] [--min-features N] [--tau M] [--grow-height M]\n");
+          "[--fusion normal|peaks|mean] [--min-features N] [--tau M] [--grow-height M] [--peak-fit | --no-peak-fit]\n");
       return 2;
     }
   }
@@ -316,6 +339,7 @@ int main(int argc, char** argv) {
   if (min_features >= 0) mapping.object_min_features = min_features;
   if (tau >= 0) mapping.tau = tau;
   if (grow_height >= 0) mapping.shape_grow_height = grow_height;
+  if (peak_fit >= 0) mapping.peak_fit = peak_fit == 1;
   const hull::SurveySimulationOptions oa = hull::SurveyPreset(preset);
   const Survey a = RunOne(preset + " (A)", oa, dir / "a", threads, reuse, explain, mapping);
   if (pair) {

@@ -14,6 +14,7 @@
 //
 //   bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N]
 //                           [--tau M] [--threads N] [--min-features N] [--grow-height M]
+//                           [--peak-fit | --no-peak-fit]
 //                           [--keep DIR [--reuse]] [--trace OBJECT [--trace-above M]]
 // --keep DIR keeps both bundles (DIR/given, DIR/images; the front end's
 // features.csv and match-graph.csv written into DIR/images); --reuse then
@@ -21,7 +22,8 @@
 // --min-features N sets MappingOptions::object_min_features (0: the area
 // test alone, the detection before small supported objects were kept);
 // --grow-height M the level Algorithm 1's hysteresis grows clusters down
-// to (MappingOptions::shape_grow_height; a height >= tau turns it off).
+// to (MappingOptions::shape_grow_height; a height >= tau turns it off);
+// --peak-fit / --no-peak-fit turn MappingOptions::peak_fit on or off.
 // --trace OBJECT prints, for the run from the images, every landmark over
 // that true object standing more than --trace-above M (default 0.01 m)
 // above the object's true max: its track (keyframe, pixel), each pixel cast
@@ -295,6 +297,7 @@ int main(int argc, char** argv) {
   int seed = 1, threads = 2, min_features = -1;
   double grow_height = -1;
   TraceRequest trace;
+  int peak_fit = -1;  // -1: MappingOptions' default
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -324,13 +327,17 @@ int main(int argc, char** argv) {
       trace.object = value();
     } else if (a == "--trace-above") {
       trace.above = std::atof(value().c_str());
+    } else if (a == "--peak-fit") {
+      peak_fit = 1;
+    } else if (a == "--no-peak-fit") {
+      peak_fit = 0;
     } else if (a == "--reuse") {
       reuse = true;
     } else {
       std::fprintf(stderr,
                    "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
-                   "[--threads N] [--min-features N] [--grow-height M] [--keep DIR [--reuse]] "
-                   "[--trace OBJECT [--trace-above M]]\n");
+                   "[--threads N] [--min-features N] [--grow-height M] [--peak-fit | --no-peak-fit] "
+                   "[--keep DIR [--reuse]] [--trace OBJECT [--trace-above M]]\n");
       return 2;
     }
   }
@@ -368,6 +375,7 @@ int main(int argc, char** argv) {
   o.mapping.tau = tau;
   if (min_features >= 0) o.mapping.object_min_features = min_features;
   if (grow_height >= 0) o.mapping.shape_grow_height = grow_height;
+  if (peak_fit >= 0) o.mapping.peak_fit = peak_fit == 1;
   const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse, trace);
   const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse, trace);
 
