@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <functional>
-#include <memory>
 
 #include "geometry/point_index.h"
 #include "mapping/alpha_shape.h"
@@ -17,8 +15,6 @@ namespace {
 
 // Features closer than this to the camera plane cannot be projected.
 constexpr double kMinDepth = 1e-3;
-// A lone peak's confirmer stands within this of its height.
-constexpr double kPeakConfirmHeight = 0.03;
 
 }  // namespace
 
@@ -70,59 +66,7 @@ void KeepSeededClusters(const std::vector<char>& seed, int min_seeds, DbscanResu
   db.num_clusters = kept;
 }
 
-void AdmitLonePeaks(const std::vector<Eigen::Vector3d>& below, double eps, int min_points,
-                    std::vector<Eigen::Vector3d>& points, const std::vector<char>& seed,
-                    const std::function<bool(std::size_t)>& confirmed, DbscanResult& db, std::vector<int>& rim) {
-  rim.clear();
-  if (below.empty()) return;
-  std::vector<Eigen::Vector3d> flat;
-  flat.reserve(below.size());
-  for (const Eigen::Vector3d& b : below) flat.emplace_back(b.x(), b.y(), 0.0);
-  const PointIndex index(std::move(flat));
-  std::vector<int> cluster_of_below(below.size(), DbscanResult::kNoise);
-  const std::size_t n = points.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!seed[i] || db.labels[i] != DbscanResult::kNoise || !confirmed(i)) continue;
-    const auto near = index.Within(Eigen::Vector3d(points[i].x(), points[i].y(), 0.0), eps);
-    if (static_cast<int>(near.size()) + 1 < min_points) continue;
-    // Join the rim cluster of a neighbour another lone peak already took,
-    // else start one.
-    int c = DbscanResult::kNoise;
-    for (const auto& [k, d2] : near) {
-      (void)d2;
-      if (cluster_of_below[static_cast<std::size_t>(k)] >= 0) {
-        c = cluster_of_below[static_cast<std::size_t>(k)];
-        break;
-      }
-    }
-    if (c < 0) c = db.num_clusters++;
-    db.labels[i] = c;
-    for (const auto& [k, d2] : near) {
-      (void)d2;
-      const auto b = static_cast<std::size_t>(k);
-      if (cluster_of_below[b] >= 0) continue;
-      cluster_of_below[b] = c;
-      rim.push_back(k);
-      points.push_back(below[b]);
-      db.labels.push_back(c);
-    }
-  }
-}
-
-std::unique_ptr<PeakConfirmers> LonePeakConfirmers(const MappingInput& input, const MappingOptions& o) {
-  std::vector<Eigen::Vector3d> above;
-  auto out = std::make_unique<PeakConfirmers>();
-  for (const MappingLandmark& l : input.landmarks) {
-    if (!(std::abs(l.deviation) > o.tau && l.p_g.allFinite())) continue;
-    above.push_back(l.p_g);
-    out->height.push_back(std::abs(l.deviation));
-  }
-  out->index = std::make_unique<PointIndex>(std::move(above));
-  return out;
-}
-
-KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o,
-                            const PeakConfirmers* confirmers) {
+KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o) {
   const MappingKeyframe& kf = input.keyframes[static_cast<std::size_t>(keyframe)];
   KeyframeShapes out;
   out.keyframe = keyframe;
@@ -133,10 +77,8 @@ KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const Mappi
   // lower level that a cluster may grow through.
   const double low = std::min(o.tau, o.shape_grow_height);
   std::vector<Eigen::Vector3d> cluster_points;
-  std::vector<int> cluster_point_of;   // -> out.points
-  std::vector<char> seed;              // per cluster point: |d| > tau
-  std::vector<Eigen::Vector3d> below;  // the points at or below the lower level (x, y, |d|) ...
-  std::vector<int> below_point_of;     // ... -> out.points
+  std::vector<int> cluster_point_of;  // -> out.points
+  std::vector<char> seed;             // per cluster point: |d| > tau
   for (const int li : kf.landmarks) {
     const MappingLandmark& l = input.landmarks[static_cast<std::size_t>(li)];
     ShapePoint p;
@@ -149,9 +91,6 @@ KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const Mappi
       cluster_points.emplace_back(p.p_c.x(), p.p_c.y(), std::abs(l.deviation));
       cluster_point_of.push_back(static_cast<int>(out.points.size()));
       seed.push_back(std::abs(l.deviation) > o.tau);
-    } else {
-      below.emplace_back(p.p_c.x(), p.p_c.y(), std::abs(l.deviation));
-      below_point_of.push_back(static_cast<int>(out.points.size()));
     }
     out.points.push_back(p);
   }
@@ -159,32 +98,6 @@ KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const Mappi
   DbscanResult db = Dbscan(cluster_points, o.dbscan_eps, o.dbscan_min_points);
   if (o.fusion_keep_peaks) AdmitPeakPoints(cluster_points, o.dbscan_eps, db);
   if (low < o.tau) KeepSeededClusters(seed, 1, db);
-  if (o.fusion_keep_peaks && low < o.tau) {
-    std::unique_ptr<PeakConfirmers> own;
-    if (confirmers == nullptr) confirmers = (own = LonePeakConfirmers(input, o)).get();
-    // Another landmark above the level within eps of the seed (in g, seen
-    // from any keyframe): one wrong match alone raises no lone peak.
-    const auto confirmed = [&](std::size_t i) {
-      const Eigen::Vector3d& p =
-          input.landmarks[static_cast<std::size_t>(out.points[static_cast<std::size_t>(cluster_point_of[i])].landmark)]
-              .p_g;
-      const double h = std::abs(
-          input.landmarks[static_cast<std::size_t>(out.points[static_cast<std::size_t>(cluster_point_of[i])].landmark)]
-              .deviation);
-      int near = 0;
-      for (const auto& [k, d2] : confirmers->index->Within(p, o.dbscan_eps)) {
-        (void)d2;
-        if (std::abs(confirmers->height[static_cast<std::size_t>(k)] - h) <= kPeakConfirmHeight) ++near;
-      }
-      return near >= 2;  // itself and another
-    };
-    std::vector<int> rim;
-    AdmitLonePeaks(below, o.dbscan_eps, o.dbscan_min_points, cluster_points, seed, confirmed, db, rim);
-    for (const int k : rim) {
-      cluster_point_of.push_back(below_point_of[static_cast<std::size_t>(k)]);
-      seed.push_back(0);
-    }
-  }
   std::vector<std::vector<int>> members(static_cast<std::size_t>(db.num_clusters));
   for (std::size_t i = 0; i < db.labels.size(); ++i) {
     const int c = db.labels[i];
@@ -238,15 +151,13 @@ std::vector<KeyframeShapes> DetectAllShapes(const MappingInput& input, const Map
                                             Progress& progress) {
   const int n = static_cast<int>(input.keyframes.size());
   std::vector<KeyframeShapes> out(static_cast<std::size_t>(n));
-  const std::unique_ptr<PeakConfirmers> confirmers = LonePeakConfirmers(input, options);
   std::atomic<bool> cancelled{false};
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
     if (cancelled.load(std::memory_order_relaxed) || progress.Cancelled()) {
       cancelled = true;
       return;
     }
-    for (int k = r.begin(); k != r.end(); ++k)
-      out[static_cast<std::size_t>(k)] = DetectShapes(input, k, options, confirmers.get());
+    for (int k = r.begin(); k != r.end(); ++k) out[static_cast<std::size_t>(k)] = DetectShapes(input, k, options);
   });
   progress.ThrowIfCancelled();
   if (cancelled) throw Cancelled();

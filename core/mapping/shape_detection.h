@@ -11,12 +11,9 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
-#include <memory>
 #include <vector>
 
 #include "base/progress.h"
-#include "geometry/point_index.h"
 #include "geometry/triangle_mesh.h"
 #include "mapping/dbscan.h"
 #include "mapping/mapping_input.h"
@@ -72,36 +69,9 @@ void AdmitPeakPoints(const std::vector<Eigen::Vector3d>& points, double eps, Dbs
 // points become noise); the rest are renumbered 0 .. in their order.
 void KeepSeededClusters(const std::vector<char>& seed, int min_seeds, DbscanResult& db);
 
-// Lone peaks (with fusion_keep_peaks and the hysteresis, after
-// KeepSeededClusters): a seed (seed[i], above tau) that is still noise —
-// the top of a narrow lump whose flanks this keyframe saw none of above the
-// lower level — forms a cluster with the points at or below the level
-// (`below`, (x, y, |d|)) within eps of it on the image plane, when they are
-// at least min_points - 1 (the hull it stands on, measured around it, as at
-// tau = 0 where it would join the hull's cluster), if `confirmed(i)`
-// (DetectShapes: another landmark above the level stands within eps of it,
-// so one wrong match alone forms no lone peak). A seed whose neighbours
-// another lone peak already took joins that cluster. The rim points are
-// appended to `points` and `db.labels`, and their indices into `below` to
-// `rim`, in that order. How high the fused model rises is still the
-// fusion's support rule: one wrong match in one keyframe raises nothing.
-void AdmitLonePeaks(const std::vector<Eigen::Vector3d>& below, double eps, int min_points,
-                    std::vector<Eigen::Vector3d>& points, const std::vector<char>& seed,
-                    const std::function<bool(std::size_t)>& confirmed, DbscanResult& db, std::vector<int>& rim);
-
-// The landmarks above tau (in g, with their |deviation|) that confirm a
-// lone peak: one within eps of it whose height is within 3 cm of its own.
-struct PeakConfirmers {
-  std::unique_ptr<PointIndex> index;
-  std::vector<double> height;  // per point of the index
-};
-std::unique_ptr<PeakConfirmers> LonePeakConfirmers(const MappingInput& input, const MappingOptions& options);
-
 // Algorithm 1 for one keyframe (index into input.keyframes). options.Check()
 // is the caller's business.
-// `confirmers` (LonePeakConfirmers) is built here when null.
-KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& options,
-                            const PeakConfirmers* confirmers = nullptr);
+KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& options);
 
 // Algorithm 1 for every keyframe, in parallel (the result does not depend on
 // the number of threads). Throws hull::Cancelled when progress asks.
