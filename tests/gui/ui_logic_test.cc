@@ -448,6 +448,27 @@ class UiLogicTest : public QObject {
                         [](const ParameterError& e) { return e.key == QLatin1String("fe_track_check_max_height"); }));
   }
 
+  void refinementParametersReachTheFrontEnd() {
+    ParameterValues values = DefaultValues(DefaultParameterTable());
+    const hull::FrontEndOptions defaults = FrontEndOptionsFrom(values);
+    QVERIFY(defaults.tracks.refine);
+    QCOMPARE(defaults.tracks.refine_max_shift, hull::TrackOptions().refine_max_shift);
+    QCOMPARE(defaults.tracks.refine_min_ncc, hull::TrackOptions().refine_min_ncc);
+    const QString key = FrontEndKey(values);
+    values.insert(QStringLiteral("fe_refine"), QStringLiteral("off"));
+    values.insert(QStringLiteral("fe_refine_max_shift"), 1.5);
+    values.insert(QStringLiteral("fe_refine_min_ncc"), 0.6);
+    const hull::FrontEndOptions changed = FrontEndOptionsFrom(values);
+    QVERIFY(!changed.tracks.refine);
+    QCOMPARE(changed.tracks.refine_max_shift, 1.5);
+    QCOMPARE(changed.tracks.refine_min_ncc, 0.6);
+    QVERIFY(FrontEndKey(values) != key);
+    values.insert(QStringLiteral("fe_refine_min_ncc"), 1.5);
+    const std::vector<ParameterError> errors = CheckDefaultParameters(values);
+    QVERIFY(std::any_of(errors.begin(), errors.end(),
+                        [](const ParameterError& e) { return e.key == QLatin1String("fe_refine_min_ncc"); }));
+  }
+
   // The peak fit from the parameter panel: off by default (MappingOptions'),
   // "on" reaches MappingOptions.
   void peakFitParameterReachesTheMapping() {

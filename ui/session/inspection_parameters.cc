@@ -119,6 +119,19 @@ void AddFrontEndFields(ParameterTable& t) {
                    -0.001, f.tracks.check_min_height, 3, 0.05, QStringLiteral("m"),
                    QStringLiteral("A checked track standing farther than this behind every member's DVL plane (inside "
                                   "the hull) is dropped; negative.")));
+  t.push_back(
+      Choice(QStringLiteral("fe_refine"), kFront, s, QStringLiteral("Sub-pixel refinement"),
+             {QStringLiteral("on"), QStringLiteral("off")}, {QStringLiteral("On"), QStringLiteral("Off")},
+             f.tracks.refine ? 0 : 1,
+             QStringLiteral("Each track's features are aligned to its first feature's image patch (shift, "
+                            "gain, bias): two-view tracks then triangulate millimetres, not centimetres, off.")));
+  t.push_back(Real(QStringLiteral("fe_refine_max_shift"), kFront, s, QStringLiteral("Refinement: max. shift"), 0.1,
+                   32.0, f.tracks.refine_max_shift, 2, 0.5, QStringLiteral("px"),
+                   QStringLiteral("An alignment moving a feature farther than this keeps the detector's pixel.")));
+  t.push_back(Real(QStringLiteral("fe_refine_min_ncc"), kFront, s, QStringLiteral("Refinement: min. correlation"), -1.0,
+                   1.0, f.tracks.refine_min_ncc, 2, 0.05, {},
+                   QStringLiteral("An alignment whose patches correlate less than this (weighted NCC) keeps the "
+                                  "detector's pixel.")));
 }
 
 // The photomosaic (core/mosaic/photomosaic.h): used by the next Inspection >
@@ -357,6 +370,9 @@ FrontEndOptions FrontEndOptionsFrom(const ParameterValues& values) {
       values.value(QStringLiteral("fe_track_check"), QStringLiteral("on")).toString() != QLatin1String("off");
   real("fe_track_check_max_height", o.tracks.check_max_height);
   real("fe_track_check_min_height", o.tracks.check_min_height);
+  o.tracks.refine = values.value(QStringLiteral("fe_refine"), QStringLiteral("on")).toString() != QLatin1String("off");
+  real("fe_refine_max_shift", o.tracks.refine_max_shift);
+  real("fe_refine_min_ncc", o.tracks.refine_min_ncc);
   return o;
 }
 
