@@ -10,6 +10,7 @@
 #include <random>
 
 #include "geometry/mesh_index.h"
+#include "keyframe_grid.h"
 #include "mapping/mapper.h"
 #include "mapping/mesh_refinement.h"
 #include "mapping/refinement_region.h"
@@ -86,19 +87,7 @@ MappingInput LumpScene() {
     const double r = 0.25 * std::sqrt(u(rng)), a = 2 * M_PI * u(rng);
     add(lump.x() + r * std::cos(a), lump.y() + r * std::sin(a));
   }
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      MappingKeyframe k;
-      k.id = 3 * i + j;
-      k.x_g_cT = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1.6 + 0.4 * i, 1.5 + 0.4 * j, -1.5));
-      const Pose inv = k.x_g_cT.Inverse();
-      for (std::size_t l = 0; l < in.landmarks.size(); ++l) {
-        const Eigen::Vector3d p = inv * in.landmarks[l].p_g;
-        if (p.z() > 0 && in.camera.InImage(in.camera.top.Project(p))) k.landmarks.push_back(static_cast<int>(l));
-      }
-      in.keyframes.push_back(std::move(k));
-    }
-  }
+  AddKeyframeGrid(in, 0, Eigen::Vector2d(1.6, 1.5), Eigen::Vector2d(0.4, 0.4));
   return in;
 }
 

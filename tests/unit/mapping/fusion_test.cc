@@ -13,6 +13,7 @@
 #include "base/error.h"
 #include "geometry/mesh_index.h"
 #include "geometry/point_index.h"
+#include "keyframe_grid.h"
 #include "mapping/mapper.h"
 #include "mapping/mesh_refinement.h"
 #include "mapping/refinement_region.h"
@@ -61,21 +62,7 @@ Scene MakeScene(double noise) {
     add(kDisk.x() + r * std::cos(a), kDisk.y() + r * std::sin(a));
   }
   // Cameras 1.5 m below, looking up (+z of M = the camera's optical axis).
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      MappingKeyframe k;
-      k.id = 10 + 3 * i + j;
-      k.x_g_cT = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1.5 + 0.5 * i, 1.6 + 0.4 * j, -1.5));
-      const Pose inv = k.x_g_cT.Inverse();
-      for (std::size_t l = 0; l < s.input.landmarks.size(); ++l) {
-        const Eigen::Vector3d p = inv * s.input.landmarks[l].p_g;
-        if (p.z() > 0 && s.input.camera.InImage(s.input.camera.top.Project(p))) {
-          k.landmarks.push_back(static_cast<int>(l));
-        }
-      }
-      s.input.keyframes.push_back(std::move(k));
-    }
-  }
+  AddKeyframeGrid(s.input, 10, Eigen::Vector2d(1.5, 1.6), Eigen::Vector2d(0.5, 0.4));
   return s;
 }
 

@@ -14,6 +14,7 @@
 #include <random>
 
 #include "geometry/mesh_index.h"
+#include "keyframe_grid.h"
 #include "mapping/mapper.h"
 #include "mapping/peak_fit.h"
 #include "support/test_meshes.h"
@@ -74,19 +75,7 @@ MappingInput MakeInput(const std::function<double(double, double)>& h, double ho
     }
   }
   for (const auto& e : extra) add(e.x(), e.y(), e.z());
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      MappingKeyframe k;
-      k.id = 10 + 3 * i + j;
-      k.x_g_cT = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1.5 + 0.5 * i, 1.6 + 0.4 * j, -1.5));
-      const Pose inv = k.x_g_cT.Inverse();
-      for (std::size_t l = 0; l < in.landmarks.size(); ++l) {
-        const Eigen::Vector3d p = inv * in.landmarks[l].p_g;
-        if (p.z() > 0 && in.camera.InImage(in.camera.top.Project(p))) k.landmarks.push_back(static_cast<int>(l));
-      }
-      in.keyframes.push_back(std::move(k));
-    }
-  }
+  AddKeyframeGrid(in, 10, Eigen::Vector2d(1.5, 1.6), Eigen::Vector2d(0.5, 0.4));
   return in;
 }
 
