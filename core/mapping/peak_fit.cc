@@ -7,6 +7,7 @@
 #include <map>
 #include <set>
 
+#include "geometry/convex_hull_2d.h"
 #include "geometry/point_index.h"
 
 namespace hull {
@@ -14,27 +15,6 @@ namespace {
 
 double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
   return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
-// Andrew's monotone chain: the convex hull, counter-clockwise, no collinear
-// points.
-std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> p) {
-  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (p.size() < 3) return p;
-  std::vector<Eigen::Vector2d> h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && Cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && Cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
-    h[k++] = p[i - 1];
-  }
-  h.resize(k - 1);
-  return h;
 }
 
 // Strictly inside a counter-clockwise convex polygon.
@@ -162,7 +142,10 @@ std::vector<FittedPeak> FitPeaks(const MappingInput& input, const MeshIndex& cad
     // The features around it (tangent-plane distance within the radius).
     std::vector<Eigen::Vector3d> uvh;
     std::vector<int> members;
-    for (const auto& [l, d2] : index.Within(p_M[t], 2 * o.radius)) {
+    // In landmark order (a deterministic order for the fits).
+    std::vector<std::pair<int, double>> near = index.Within(p_M[t], 2 * o.radius, false);
+    std::sort(near.begin(), near.end());
+    for (const auto& [l, d2] : near) {
       (void)d2;
       const Eigen::Vector3d q = p_M[static_cast<std::size_t>(l)] - cp.point;
       const Eigen::Vector2d uv(q.dot(e1), q.dot(e2));
@@ -172,20 +155,6 @@ std::vector<FittedPeak> FitPeaks(const MappingInput& input, const MeshIndex& cad
         continue;
       uvh.emplace_back(uv.x(), uv.y(), input.landmarks[static_cast<std::size_t>(l)].deviation);
       members.push_back(l);
-    }
-    // Keep a deterministic order (by landmark index).
-    std::vector<std::size_t> order(members.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return members[a] < members[b]; });
-    {
-      std::vector<Eigen::Vector3d> u2;
-      std::vector<int> m2;
-      for (const std::size_t i : order) {
-        u2.push_back(uvh[i]);
-        m2.push_back(members[i]);
-      }
-      uvh = std::move(u2);
-      members = std::move(m2);
     }
     peak.features = static_cast<int>(members.size());
     std::set<int> keyframes;
@@ -267,7 +236,6 @@ std::vector<FittedPeak> FitPeaks(const MappingInput& input, const MeshIndex& cad
         lo_uv = f.apex_uv;
       }
       hi = std::max(hi, f.apex);
-      lo = std::min(lo, f.estimate);
     }
     if (!ok) {
       reject(why);

@@ -59,9 +59,6 @@ std::vector<ProjectedTriangle> ProjectMesh(const TriangleMesh& mesh, const ViewB
                                            const std::vector<double>* values, const std::vector<double>* valued_mask,
                                            const std::optional<Eigen::AlignedBox2d>& window = std::nullopt);
 
-// The convex hull of points, counter-clockwise (fewer than three points: as given).
-std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points);
-
 // Boxes for labels beside anchors (2-D page units, y down): for each anchor
 // in order, the nearest free spot right or left of it, above or below,
 // stepping outwards by the label's height (a row of touching lumps along

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "base/deviation_colours.h"
+#include "geometry/convex_hull_2d.h"
 #include "geometry/mesh_index.h"
 #include "mapping/vertex_significance.h"
 #include "ui/report/figure_geometry.h"
