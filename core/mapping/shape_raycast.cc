@@ -18,6 +18,9 @@ constexpr double kMaxConeHalfAngle = 80.0 * M_PI / 180.0;
 // curvature under a shape (a 5 m bilge radius bends 0.3 m of hull by 2 mm)
 // and the adjustment's noise, with room to spare.
 constexpr double kNormalReachMargin = 0.05;
+// Barycentric coordinates are accepted down to -kBarycentricSlack (a few
+// hundred nanometres on a shape's 5-10 cm triangles, far above rounding).
+constexpr double kBarycentricSlack = 1e-9;
 
 }  // namespace
 
@@ -34,11 +37,15 @@ bool SegmentTriangle(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, 
   if (det == 0 || !std::isfinite(det)) return false;
   const double inv = 1.0 / det;
   const Eigen::Vector3d tvec = origin - a;
+  // Barycentric bounds widened by kBarycentricSlack: a line through a
+  // triangle's corner or along its edge (the fusion along normals casts the
+  // line of the vertex moved under a shape's vertex exactly through it) is
+  // a hit, not a coin toss of rounding.
   const double u = tvec.dot(pvec) * inv;
-  if (u < 0 || u > 1) return false;
+  if (u < -kBarycentricSlack || u > 1 + kBarycentricSlack) return false;
   const Eigen::Vector3d qvec = tvec.cross(e1);
   const double v = dir.dot(qvec) * inv;
-  if (v < 0 || u + v > 1) return false;
+  if (v < -kBarycentricSlack || u + v > 1 + kBarycentricSlack) return false;
   const double tt = e2.dot(qvec) * inv;
   if (!(tt > 0 && tt <= t_max)) return false;
   *t = tt;
