@@ -84,6 +84,7 @@ void WriteObjects(const MappingResult& r, const std::string& dir) {
     j.Set("features", o.num_features);
     j.Set("views", o.num_views);
     j.Set("keyframes", Json::ArrayOf(o.keyframes));
+    j.Set("vertices", Json::ArrayOf(o.vertices));  // the footprint's model.ply vertices (survey comparison)
     list.Push(std::move(j));
   }
   WriteFileAtomic(Path(dir, "objects.csv"), csv.text());

@@ -18,10 +18,6 @@
 namespace hull {
 namespace {
 
-// Matched objects whose footprints differ by more than this factor are
-// compared over the smaller footprint (CompareSurveys).
-constexpr double kMergedAreaRatio = 1.5;
-
 namespace fs = std::filesystem;
 
 const std::vector<double>& Deviation(const TriangleMesh& m, const char* which) {
@@ -41,6 +37,100 @@ Eigen::Vector3d Vec3(const JsonReader& r, const char* key) {
   return {v[0], v[1], v[2]};
 }
 
+// A model vertex's detected object (index into the objects; -1: none).
+int ObjectAt(const std::vector<int>& object_of, int vertex) {
+  return vertex >= 0 && static_cast<std::size_t>(vertex) < object_of.size()
+             ? object_of[static_cast<std::size_t>(vertex)]
+             : -1;
+}
+
+// Which detected object each vertex of a model belongs to (-1: none): the
+// object's own vertices where the results list them (objects.json
+// "vertices"), else those whose feet lie within the disc of the object's
+// area about its centroid (at least 5 cm, at most max_radius).
+std::vector<int> ObjectOfVertex(const std::vector<DetectedObject>& objects, const std::vector<Eigen::Vector3d>& feet,
+                                const PointIndex& index, double max_radius) {
+  std::vector<int> of(feet.size(), -1);
+  for (std::size_t k = 0; k < objects.size(); ++k) {
+    const DetectedObject& o = objects[k];
+    if (!o.vertices.empty()) {
+      for (const int v : o.vertices) {
+        if (v >= 0 && static_cast<std::size_t>(v) < of.size() && of[static_cast<std::size_t>(v)] < 0) {
+          of[static_cast<std::size_t>(v)] = static_cast<int>(k);
+        }
+      }
+      continue;
+    }
+    const double r = std::clamp(std::sqrt(std::max(o.area, 0.0) / M_PI), 0.05, max_radius);
+    for (const auto& hit : index.Within(o.centroid_m, r, false)) {
+      int& slot = of[static_cast<std::size_t>(hit.first)];
+      if (slot < 0) slot = static_cast<int>(k);
+    }
+  }
+  return of;
+}
+
+struct Peak {
+  std::size_t vertex;
+  int object;
+};
+
+// The peaks of a map's objects: every object vertex with no higher vertex
+// (ties: none of a lower index) whose foot lies within `spacing` of its own,
+// and every object's highest vertex.
+std::vector<Peak> ObjectPeaks(const std::vector<double>& dev, const std::vector<int>& object_of,
+                              const std::vector<Eigen::Vector3d>& feet, const PointIndex& index,
+                              std::size_t num_objects, double spacing) {
+  std::vector<Peak> peaks;
+  std::vector<int> top(num_objects, -1);
+  for (std::size_t v = 0; v < object_of.size(); ++v) {
+    const int k = object_of[v];
+    if (k < 0) continue;
+    int& t = top[static_cast<std::size_t>(k)];
+    if (t < 0 || dev[v] > dev[static_cast<std::size_t>(t)]) t = static_cast<int>(v);
+    bool highest = true;
+    for (const auto& hit : index.Within(feet[v], spacing, false)) {
+      const std::size_t j = static_cast<std::size_t>(hit.first);
+      if (dev[j] > dev[v] || (dev[j] == dev[v] && j < v)) {
+        highest = false;
+        break;
+      }
+    }
+    if (highest) peaks.push_back({v, k});
+  }
+  for (std::size_t k = 0; k < num_objects; ++k) {
+    if (top[k] < 0) continue;
+    const std::size_t v = static_cast<std::size_t>(top[k]);
+    if (std::none_of(peaks.begin(), peaks.end(), [&](const Peak& p) { return p.vertex == v; })) {
+      peaks.push_back({v, static_cast<int>(k)});
+    }
+  }
+  return peaks;
+}
+
+// The highest height of a model within r of c (its vertices' feet); where it
+// has no vertex that close (a coarse stretch nothing was fused into), its
+// nearest vertex's.
+struct DiscMax {
+  double h = 0;
+  int vertex = -1;
+};
+DiscMax MaxOver(const PointIndex& at, const std::vector<double>& dev, const Eigen::Vector3d& c, double r) {
+  DiscMax m;
+  m.h = -std::numeric_limits<double>::infinity();
+  for (const auto& hit : at.Within(c, r, false)) {
+    const double h = dev[static_cast<std::size_t>(hit.first)];
+    if (h > m.h || (h == m.h && hit.first < m.vertex)) {
+      m.h = h;
+      m.vertex = hit.first;
+    }
+  }
+  if (m.vertex >= 0) return m;
+  m.vertex = at.NearestOne(c).first;
+  m.h = m.vertex >= 0 ? dev[static_cast<std::size_t>(m.vertex)] : 0.0;
+  return m;
+}
+
 }  // namespace
 
 void SurveyCompareOptions::Check() const {
@@ -49,6 +139,8 @@ void SurveyCompareOptions::Check() const {
     throw OptionError("change_threshold", "must be positive (m)");
   }
   if (!(std::isfinite(significance_k) && significance_k > 0)) throw OptionError("significance_k", "must be positive");
+  if (!(std::isfinite(peak_spacing) && peak_spacing > 0)) throw OptionError("peak_spacing", "must be positive (m)");
+  if (!(std::isfinite(peak_reach) && peak_reach > 0)) throw OptionError("peak_reach", "must be positive (m)");
   if (!(std::isfinite(max_misplacement) && max_misplacement > 0)) {
     throw OptionError("max_misplacement", "must be positive (m)");
   }
@@ -90,40 +182,71 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   cad_copy.ComputeNormals();
   const MeshIndex index(cad_copy);
 
-  // A's height field, keyed by where each vertex stands on the CAD.
-  std::vector<Eigen::Vector3d> feet_a(model_a.num_vertices());
+  // Each height field keyed by where its vertices stand on the CAD (their
+  // feet), B's first on its own placement.
   constexpr std::size_t kChunk = 4096;
-  const double total = static_cast<double>(model_a.num_vertices() + model_b.num_vertices()) + 1.0;
-  progress.Update(0.0, "placing survey A's model on the CAD");
-  for (std::size_t i = 0; i < feet_a.size(); ++i) {
-    if (i % kChunk == 0) {
-      progress.ThrowIfCancelled();
-      progress.Update(static_cast<double>(i) / total, "placing survey A's model on the CAD");
+  const std::size_t na = model_a.num_vertices(), nb = model_b.num_vertices();
+  const double total = static_cast<double>(na + 2 * nb) + 1.0;
+  std::size_t done = 0;
+  auto place = [&](const TriangleMesh& m, const Pose& x, const char* what, std::vector<Eigen::Vector3d>* normals) {
+    std::vector<Eigen::Vector3d> feet(m.num_vertices());
+    if (normals) normals->resize(m.num_vertices());
+    for (std::size_t i = 0; i < feet.size(); ++i, ++done) {
+      if (i % kChunk == 0) {
+        progress.ThrowIfCancelled();
+        progress.Update(static_cast<double>(done) / total, what);
+      }
+      const ClosestPoint c = index.Closest(x * m.vertices[i]);
+      feet[i] = c.point;
+      if (normals) (*normals)[i] = cad_copy.face_normals[static_cast<std::size_t>(c.face)];
     }
-    feet_a[i] = index.Closest(model_a.vertices[i]).point;
-  }
+    return feet;
+  };
+  std::vector<Eigen::Vector3d> normals_a, normals_b;
+  const std::vector<Eigen::Vector3d> feet_a = place(model_a, Pose(), "placing survey A's model on the CAD", &normals_a);
   const PointIndex a_index(feet_a);
+  const std::vector<Eigen::Vector3d> own_feet_b =
+      place(model_b, Pose(), "placing survey B's model on the CAD", &normals_b);
+  const PointIndex own_b_index(own_feet_b);
 
+  // Each map's peaks: the highest vertex of every detected object and each
+  // other local maximum of an object (no higher vertex within peak_spacing).
+  // An object's change is read at its peaks, not as its max height: two maps
+  // split and join touching lumps differently, and a joined object's max
+  // stands on one lump only (docs/mapping.md, "Change between two surveys").
+  const std::vector<int> object_of_a = ObjectOfVertex(objects_a, feet_a, a_index, o.match_radius);
+  const std::vector<int> object_of_b = ObjectOfVertex(objects_b, own_feet_b, own_b_index, o.match_radius);
+  const std::vector<Peak> peaks_a = ObjectPeaks(dev_a, object_of_a, feet_a, a_index, objects_a.size(), o.peak_spacing);
+  const std::vector<Peak> peaks_b =
+      ObjectPeaks(dev_b, object_of_b, own_feet_b, own_b_index, objects_b.size(), o.peak_spacing);
+
+  // B's map registered to A's by the peaks (their feet and the CAD's normals
+  // there): they stand where they stood whatever each map's object
+  // detection made of touching lumps, which moves objects' centroids.
   SurveyComparison out;
   if (o.register_surveys) {
+    auto as_objects = [](const std::vector<Peak>& peaks, const std::vector<Eigen::Vector3d>& feet,
+                         const std::vector<Eigen::Vector3d>& normals) {
+      std::vector<DetectedObject> points(peaks.size());
+      for (std::size_t k = 0; k < peaks.size(); ++k) {
+        points[k].centroid_m = feet[peaks[k].vertex];
+        points[k].normal_m = normals[peaks[k].vertex];
+      }
+      return points;
+    };
     SurveyRegistrationOptions ro;
-    ro.match_radius = o.match_radius;
+    ro.match_radius = o.peak_spacing;
     ro.max_offset = o.max_misplacement;
-    out.registration = RegisterSurveys(objects_a, objects_b, ro);
+    out.registration =
+        RegisterSurveys(as_objects(peaks_a, feet_a, normals_a), as_objects(peaks_b, own_feet_b, normals_b), ro);
   }
   const Pose& x_ab = out.registration.a_from_b;  // B's map placed on A's
+  const std::vector<Eigen::Vector3d> feet_b = place(model_b, x_ab, "measuring the change on survey B's model", nullptr);
+  const PointIndex b_index(feet_b);
   out.model = model_b;
-  const std::size_t nb = model_b.num_vertices();
   std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
-  std::vector<Eigen::Vector3d> feet_b(nb);
   for (std::size_t i = 0; i < nb; ++i) {
-    if (i % kChunk == 0) {
-      progress.ThrowIfCancelled();
-      progress.Update(static_cast<double>(feet_a.size() + i) / total, "measuring the change on survey B's model");
-    }
-    const Eigen::Vector3d foot = index.Closest(x_ab * model_b.vertices[i]).point;
-    feet_b[i] = foot;
-    const auto nearest = a_index.NearestOne(foot);
+    const auto nearest = a_index.NearestOne(feet_b[i]);
     const std::size_t j = static_cast<std::size_t>(std::max(0, nearest.first));
     change[i] = dev_b[i] - dev_a[j];
     const double sa = SigmaAt(sigma_a, j), sb = SigmaAt(sigma_b, i);
@@ -136,113 +259,107 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   out.model.SetScalar("change", change);
   out.model.SetScalar("change_sigma", sigma);
   out.model.SetScalar("change_significant", significant);
-  const PointIndex b_index(feet_b);
-  // The highest height of a model over an object's footprint (the disc of
-  // its area about p on A's placement, at most match_radius; a vertex no
-  // shape was fused into stands at its CAD height, 0); where the model has
-  // no vertex that close (a coarse stretch nothing was fused into), its
-  // nearest vertex's. For an object only one map detected, the disc is
-  // widened by twice the registration's centroid residual: that is how far
-  // the other map's view of the same lump may stand (a grown lump that only
-  // B detected, small, otherwise read the flat hull beside A's peak and came
-  // out "new").
-  const double misplacement = 2 * out.registration.rms;
-  auto height_near = [&](const PointIndex& at, const std::vector<double>& dev, const Eigen::Vector3d& p, double area,
-                         bool unmatched) {
-    const double r =
-        std::clamp(std::sqrt(std::max(area, 0.0) / M_PI) + (unmatched ? misplacement : 0.0), 0.05, o.match_radius);
-    double h = -std::numeric_limits<double>::infinity();
-    for (const auto& hit : at.Within(p, r)) h = std::max(h, dev[static_cast<std::size_t>(hit.first)]);
-    if (std::isfinite(h)) return h;
-    const int nearest = at.NearestOne(p).first;
-    return nearest >= 0 ? dev[static_cast<std::size_t>(nearest)] : 0.0;
+
+  // The disc about a peak in which both maps' heights are read: the other
+  // map's view of the same top may stand this far off (twice the
+  // registration's centroid residual).
+  const double reach = std::min(o.peak_reach + 2 * out.registration.rms, o.match_radius);
+  out.reach = reach;
+
+  // One site per peak of B and per peak of A, a pair of peaks within reach
+  // of each other (closest first) being one site.
+  struct PeakPair {
+    double d;
+    std::size_t a, b;
   };
+  std::vector<PeakPair> pairs;
+  std::vector<int> peak_at_b(nb, -1);
+  for (std::size_t b = 0; b < peaks_b.size(); ++b) peak_at_b[peaks_b[b].vertex] = static_cast<int>(b);
+  for (std::size_t a = 0; a < peaks_a.size(); ++a) {
+    for (const auto& hit : b_index.Within(feet_a[peaks_a[a].vertex], reach, false)) {
+      const int b = peak_at_b[static_cast<std::size_t>(hit.first)];
+      if (b >= 0) pairs.push_back({hit.second, a, static_cast<std::size_t>(b)});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const PeakPair& x, const PeakPair& y) {
+    if (x.d != y.d) return x.d < y.d;
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  std::vector<int> pair_of_a(peaks_a.size(), -1), pair_of_b(peaks_b.size(), -1);
+  for (const PeakPair& p : pairs) {
+    if (pair_of_a[p.a] >= 0 || pair_of_b[p.b] >= 0) continue;
+    pair_of_a[p.a] = static_cast<int>(p.b);
+    pair_of_b[p.b] = static_cast<int>(p.a);
+  }
   auto classify = [&](double delta) {
     return delta >= o.change_threshold    ? ObjectChangeKind::kGrown
            : delta <= -o.change_threshold ? ObjectChangeKind::kShrunk
                                           : ObjectChangeKind::kUnchanged;
   };
-
-  // Objects: closest pairs first, within match_radius.
-  struct Pair {
-    double d;
-    std::size_t a, b;
+  struct Site {
+    ObjectChange c;
+    int obj_a, obj_b;
   };
-  std::vector<Pair> pairs;
-  for (std::size_t a = 0; a < objects_a.size(); ++a) {
-    for (std::size_t b = 0; b < objects_b.size(); ++b) {
-      const double d = (objects_a[a].centroid_m - x_ab * objects_b[b].centroid_m).norm();
-      if (d <= o.match_radius) pairs.push_back({d, a, b});
-    }
-  }
-  std::sort(pairs.begin(), pairs.end(), [](const Pair& x, const Pair& y) {
-    if (x.d != y.d) return x.d < y.d;
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
-  std::vector<int> match_of_b(objects_b.size(), -1);
-  std::vector<char> a_used(objects_a.size(), 0);
-  for (const Pair& p : pairs) {
-    if (a_used[p.a] || match_of_b[p.b] >= 0) continue;
-    a_used[p.a] = 1;
-    match_of_b[p.b] = static_cast<int>(p.a);
-  }
-  std::vector<ObjectChange> added;
-  for (std::size_t b = 0; b < objects_b.size(); ++b) {
-    const DetectedObject& ob = objects_b[b];
-    ObjectChange c;
-    c.id_b = ob.id;
-    c.centroid = ob.centroid_m;
-    c.height_b = ob.max_height;
-    if (match_of_b[b] < 0) {
-      const double h_a = height_near(a_index, dev_a, x_ab * ob.centroid_m, ob.area, true);
-      if (h_a >= o.change_threshold) {  // there in A too, below A's detection
-        c.from_height_field = true;
-        c.height_a = h_a;
-        c.change = c.height_b - c.height_a;
-        c.kind = classify(c.change);
-        out.objects.push_back(c);
-        continue;
-      }
-      c.kind = ObjectChangeKind::kNew;
-      c.change = c.height_b;
-      added.push_back(c);
-      continue;
-    }
-    const DetectedObject& oa = objects_a[static_cast<std::size_t>(match_of_b[b])];
-    c.id_a = oa.id;
-    c.height_a = oa.max_height;
-    if (std::max(oa.area, ob.area) > kMergedAreaRatio * std::min(oa.area, ob.area)) {
-      // One map joined what the other split (touching lumps): the larger
-      // object's max may stand on a neighbour, so both maps' heights are
-      // taken over the smaller object's footprint.
-      const bool a_smaller = oa.area <= ob.area;
-      const Eigen::Vector3d at = a_smaller ? oa.centroid_m : Eigen::Vector3d(x_ab * ob.centroid_m);
-      const double area = std::min(oa.area, ob.area);
-      c.height_a = height_near(a_index, dev_a, at, area, false);
-      c.height_b = height_near(b_index, dev_b, at, area, false);
-      c.from_height_field = true;
-    }
+  std::vector<Site> sites;
+  auto add_site = [&](int pa, int pb) {
+    const Eigen::Vector3d& at = pb >= 0 ? feet_b[peaks_b[static_cast<std::size_t>(pb)].vertex]
+                                        : feet_a[peaks_a[static_cast<std::size_t>(pa)].vertex];
+    const DiscMax ma = MaxOver(a_index, dev_a, at, reach), mb = MaxOver(b_index, dev_b, at, reach);
+    Site s;
+    s.obj_a = pa >= 0 ? peaks_a[static_cast<std::size_t>(pa)].object : ObjectAt(object_of_a, ma.vertex);
+    s.obj_b = pb >= 0 ? peaks_b[static_cast<std::size_t>(pb)].object : ObjectAt(object_of_b, mb.vertex);
+    ObjectChange& c = s.c;
+    if (s.obj_a >= 0) c.id_a = objects_a[static_cast<std::size_t>(s.obj_a)].id;
+    if (s.obj_b >= 0) c.id_b = objects_b[static_cast<std::size_t>(s.obj_b)].id;
+    c.centroid = pb >= 0 ? model_b.vertices[peaks_b[static_cast<std::size_t>(pb)].vertex]
+                         : model_a.vertices[peaks_a[static_cast<std::size_t>(pa)].vertex];
+    c.height_a = ma.h;
+    c.height_b = mb.h;
     c.change = c.height_b - c.height_a;
-    c.kind = classify(c.change);
-    out.objects.push_back(c);
-  }
-  out.objects.insert(out.objects.end(), added.begin(), added.end());
-  for (std::size_t a = 0; a < objects_a.size(); ++a) {
-    if (a_used[a]) continue;
-    ObjectChange c;
-    c.kind = ObjectChangeKind::kRemoved;
-    c.id_a = objects_a[a].id;
-    c.centroid = objects_a[a].centroid_m;
-    c.height_a = objects_a[a].max_height;
-    c.change = -c.height_a;
-    const double h_b = height_near(b_index, dev_b, objects_a[a].centroid_m, objects_a[a].area, true);
-    if (h_b >= o.change_threshold) {  // still there in B, below B's detection
-      c.from_height_field = true;
-      c.height_b = h_b;
-      c.change = c.height_b - c.height_a;
+    if (s.obj_a < 0 && c.height_a < o.change_threshold) {
+      c.kind = ObjectChangeKind::kNew;
+      c.height_a = 0;
+      c.change = c.height_b;
+    } else if (s.obj_b < 0 && c.height_b < o.change_threshold) {
+      c.kind = ObjectChangeKind::kRemoved;
+      c.height_b = 0;
+      c.change = -c.height_a;
+    } else {
       c.kind = classify(c.change);
+      c.from_height_field = s.obj_a < 0 || s.obj_b < 0;
     }
-    out.objects.push_back(c);
+    sites.push_back(std::move(s));
+  };
+  for (std::size_t b = 0; b < peaks_b.size(); ++b) add_site(pair_of_b[b], static_cast<int>(b));
+  for (std::size_t a = 0; a < peaks_a.size(); ++a) {
+    if (pair_of_a[a] < 0) add_site(static_cast<int>(a), -1);
+  }
+
+  // One row per pair of objects (or object of one map) and kind: the site
+  // that changed most; where an object pair has a changed site, its
+  // unchanged sites are dropped.
+  std::sort(sites.begin(), sites.end(), [](const Site& x, const Site& y) {
+    auto group = [](const Site& s) { return s.obj_b < 0 ? 2 : s.c.kind == ObjectChangeKind::kNew ? 1 : 0; };
+    if (group(x) != group(y)) return group(x) < group(y);
+    if (x.obj_b != y.obj_b) return x.obj_b < y.obj_b;
+    if (x.obj_a != y.obj_a) return x.obj_a < y.obj_a;
+    if (x.c.kind != y.c.kind) return x.c.kind < y.c.kind;
+    return std::abs(x.c.change) > std::abs(y.c.change) ||
+           (std::abs(x.c.change) == std::abs(y.c.change) &&
+            std::max(x.c.height_a, x.c.height_b) > std::max(y.c.height_a, y.c.height_b));
+  });
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const Site& s = sites[i];
+    if (i > 0 && sites[i - 1].obj_a == s.obj_a && sites[i - 1].obj_b == s.obj_b && sites[i - 1].c.kind == s.c.kind) {
+      continue;  // the same objects and kind, a smaller change
+    }
+    if (s.c.kind == ObjectChangeKind::kUnchanged) {
+      const bool changed_elsewhere = std::any_of(sites.begin(), sites.end(), [&](const Site& t) {
+        return t.obj_a == s.obj_a && t.obj_b == s.obj_b && t.c.kind != ObjectChangeKind::kUnchanged;
+      });
+      if (changed_elsewhere) continue;
+    }
+    out.objects.push_back(s.c);
   }
   progress.Update(1.0, "compared: " + std::to_string(out.objects.size()) + " objects");
   return out;
@@ -270,8 +387,18 @@ MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir) {
     o.id = r.String("id");
     o.centroid_m = Vec3(r, "centroid");
     o.max_height = r.Number("max_height");
-    if (r.Has("normal")) o.normal_m = Vec3(r, "normal");  // what registration uses
-    if (r.Has("area")) o.area = r.Number("area");         // the footprint looked up in the other map
+    if (r.Has("normal")) o.normal_m = Vec3(r, "normal");      // what registration uses
+    if (r.Has("area")) o.area = r.Number("area");             // the footprint, where "vertices" is absent
+    if (const auto vs = r.OptionalNumbers("vertices", -1)) {  // the footprint's vertices in model.ply
+      for (const double v : *vs) {
+        if (!(v >= 0 && v < static_cast<double>(out.model.num_vertices()) && v == std::floor(v))) {
+          r.Fail(r.Required("vertices"), "vertices",
+                 "holds " + FormatDouble(v) + ", not a vertex index of model.ply (" +
+                     std::to_string(out.model.num_vertices()) + " vertices)");
+        }
+        o.vertices.push_back(static_cast<int>(v));
+      }
+    }
     out.objects.push_back(std::move(o));
   }
   const std::string jpath = (d / "mapping.json").string();
@@ -360,14 +487,15 @@ void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_d
     const SurveyRegistration& r = c.registration;
     Json reg = Json::Object();
     reg.Set("registered", r.registered);
-    reg.Set("objects_in_common", r.inliers);
-    reg.Set("objects_in_common_unregistered", r.identity_inliers);
+    reg.Set("peaks_in_common", r.inliers);
+    reg.Set("peaks_in_common_unregistered", r.identity_inliers);
     reg.Set("rms", r.rms);
     reg.Set("rotation_deg", r.rotation * 180.0 / M_PI);
     reg.Set("translation", r.translation);
     const Vector6d x = r.a_from_b.ToVector();
     reg.Set("a_from_b", Json::ArrayOf(std::vector<double>(x.data(), x.data() + 6)));
     root.Set("registration", std::move(reg));
+    root.Set("peak_reach", c.reach);
     root.Set("objects", std::move(list));
     WriteFileAtomic((fs::path(dir) / "compare.json").string(), root.Dump());
   });

@@ -17,17 +17,25 @@
 namespace hull {
 
 struct SurveyCompareOptions {
-  // Objects of A and B whose centroids lie within this distance (m) are the
-  // same object (matched closest pair first).
+  // The widest disc (m) read about a peak, and the footprint's radius cap
+  // for objects read without their vertex list.
   double match_radius = 0.30;
-  // A matched object grew (shrank) when its max height rose (fell) by at
-  // least this much (m).
+  // Two local maxima of one map's objects closer than this (m, along the
+  // CAD) are one peak; the registration matches peaks within it.
+  double peak_spacing = 0.10;
+  // Both maps' heights at a peak are their highest within this distance (m)
+  // of it, widened by twice the registration's residual.
+  double peak_reach = 0.05;
+  // An object grew (shrank) where a peak's height rose (fell) by at least
+  // this much (m); a peak of one map where the other stands lower than this
+  // and has no object is new (removed).
   double change_threshold = 0.03;
   // A vertex's change is significant when |change| > k sqrt(sigma_A^2 + sigma_B^2).
   double significance_k = 1.96;
-  // Register B's map to A's first (mapping/survey_registration.h): the two
-  // adjustments may place the CAD model differently along the surface, by up
-  // to max_misplacement (m) at an object.
+  // Register B's map to A's first by the objects' peaks
+  // (mapping/survey_registration.h): the two adjustments may place the CAD
+  // model differently along the surface, by up to max_misplacement (m) at a
+  // peak.
   bool register_surveys = true;
   double max_misplacement = 5.0;
   // Throws OptionError naming the field.
@@ -37,23 +45,27 @@ struct SurveyCompareOptions {
 enum class ObjectChangeKind { kNew, kRemoved, kGrown, kShrunk, kUnchanged };
 const char* ObjectChangeKindName(ObjectChangeKind k);  // "new", "removed", ...
 
+// The change at the peaks of one object (or pair of objects, one of each
+// map). Every peak of either map's objects (its highest vertex and other
+// local maxima, mapping/survey_compare.cc) is a site, a peak of A and one of
+// B within reach of each other one site; at each site both maps' heights
+// are their highest vertices within reach. A site is new where A has no
+// object there and stands below change_threshold, removed the other way
+// round, else grown / shrunk / unchanged by the difference. Per pair of
+// objects (id_a, id_b) and kind the site that changed most is kept, and
+// the unchanged ones are dropped where the pair has a changed one: two maps
+// split and join touching lumps differently, and a joined object's max
+// height stands on one lump only.
 struct ObjectChange {
   ObjectChangeKind kind = ObjectChangeKind::kUnchanged;
-  std::string id_a, id_b;                              // "" where absent
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // B's (A's when removed), in M
-  double height_a = 0, height_b = 0;                   // max heights (m); 0 where absent
+  std::string id_a, id_b;                              // "" where that map has no object there
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // the peak's vertex, in M: B's (A's when only A has it)
+  double height_a = 0, height_b = 0;                   // heights at the site (m); 0 where new / removed
   double change = 0;                                   // height_b - height_a
-  // An object detected in one survey only is looked up in the other's
-  // height field (its highest vertex over the object's footprint, a disc of
-  // its area, at most match_radius): where
-  // the other survey saw a bump of at least change_threshold there, the
-  // object was there too, below that map's object detection, and is
-  // classed by the heights (height_a or height_b is then that field's
-  // height, id_a or id_b empty). Also set for a matched pair whose
-  // footprints differ by more than 1.5 times in area (one map joined
-  // touching lumps the other split): both heights are then the maps' over
-  // the smaller footprint, so a neighbour's peak in the joined object does
-  // not stand in for the object's own.
+  // One map has no object at the site but stands at least change_threshold
+  // high there: the object was there too, below that map's object
+  // detection (each map's detection has its thresholds), and is classed by
+  // the heights.
   bool from_height_field = false;
 };
 
@@ -62,11 +74,13 @@ struct SurveyComparison {
   // the same CAD point), "change_sigma" (m; NaN without sigmas) and
   // "change_significant" (1 or 0).
   TriangleMesh model;
-  // Matched first (from the bow aft as B lists them; then B's objects found in
-  // A's height field), then new, then A's unmatched (removed, or found in B's
-  // height field).
+  // Sites with an object of B first (in B's order; new ones last), then
+  // those with an object of A only (removed, or found in B's height field).
   std::vector<ObjectChange> objects;
   std::size_t significant_vertices = 0;
+  // m: the radius about a peak in which both maps' heights were read
+  // (peak_reach widened by the registration's residual).
+  double reach = 0;
   // How B's map was placed on A's before the comparison (identity when not
   // registered). Vertices and centroids keep B's own coordinates.
   SurveyRegistration registration;

@@ -75,6 +75,9 @@ QVariant ChangeTableModel::data(const QModelIndex& index, int role) const {
   if (role != Qt::DisplayRole && role != kSortRole) return {};
   const bool sort = role == kSortRole;
   const bool has_a = !c.id_a.empty(), has_b = !c.id_b.empty();
+  // A height read from a map without an object there (below its detection)
+  // is shown too; only new / removed have none.
+  const bool height_a = c.kind != ObjectChangeKind::kNew, height_b = c.kind != ObjectChangeKind::kRemoved;
   switch (index.column()) {
     case kKind:
       return sort ? QVariant(static_cast<int>(c.kind)) : QVariant(QString::fromLatin1(ObjectChangeKindName(c.kind)));
@@ -84,10 +87,10 @@ QVariant ChangeTableModel::data(const QModelIndex& index, int role) const {
       return has_b ? QString::fromStdString(c.id_b) : QStringLiteral("–");
     case kHeightA:
       if (sort) return c.height_a;
-      return has_a ? Millimetres(c.height_a) : QStringLiteral("–");
+      return height_a ? Millimetres(c.height_a) : QStringLiteral("–");
     case kHeightB:
       if (sort) return c.height_b;
-      return has_b ? Millimetres(c.height_b) : QStringLiteral("–");
+      return height_b ? Millimetres(c.height_b) : QStringLiteral("–");
     case kChange:
       return sort ? QVariant(c.change)
                   : QVariant((c.change >= 0 ? QStringLiteral("+") : QString()) + Millimetres(c.change));

@@ -108,20 +108,24 @@ Section ChangeSection(const ReportInputs& in, const std::vector<FigureRef>& figu
   s.blocks.push_back(Paragraph(
       "Both surveys were mapped against the same CAD mesh. The change in height at a vertex of B's model is B's "
       "deviation minus A's at the same point of the CAD surface; it is significant where it exceeds k times the "
-      "combined σ of both. Objects are matched by the position of their centroids, closest pairs first; a matched "
-      "object grew or shrank when its maximum height changed by the threshold or more."));
+      "combined σ of both. B's map is first registered to A's by the peaks the two have in common. Objects are "
+      "compared at their peaks (each object's highest point and its other local maxima), where both maps' highest "
+      "heights nearby are read: an object grew or shrank where a peak's height changed by the threshold or more, "
+      "is new or removed where the other map has no object and stands below the threshold, and was there below "
+      "the other map's detection otherwise. One row per pair of objects and kind, at the peak that changed most: "
+      "two maps may join touching lumps that the other splits."));
   Table t = MakeTable({{"Change", false},
                        {"Survey A", false},
                        {"Survey B", false},
-                       {"x, y, z (m)", true},
+                       {"Peak x, y, z (m)", true},
                        {"Height A (m)", true},
                        {"Height B (m)", true},
                        {"Height change (m)", true}});
   for (const ObjectChange& o : c.objects) {
     t.rows.push_back({ObjectChangeKindName(o.kind), o.id_a.empty() ? "–" : o.id_a, o.id_b.empty() ? "–" : o.id_b,
                       Format("%.2f, %.2f, %.2f", o.centroid.x(), o.centroid.y(), o.centroid.z()),
-                      o.id_a.empty() ? "–" : Num(o.height_a, 3), o.id_b.empty() ? "–" : Num(o.height_b, 3),
-                      Format("%+.3f", o.change)});
+                      o.kind == ObjectChangeKind::kNew ? "–" : Num(o.height_a, 3),
+                      o.kind == ObjectChangeKind::kRemoved ? "–" : Num(o.height_b, 3), Format("%+.3f", o.change)});
   }
   s.blocks.push_back(TableBlock(std::move(t)));
   for (const FigureRef& f : figures) {

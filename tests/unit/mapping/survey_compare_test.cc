@@ -12,6 +12,7 @@
 #include "base/error.h"
 #include "base/file_io.h"
 #include "base/progress.h"
+#include "geometry/mesh_io.h"
 #include "support/test_meshes.h"
 
 namespace hull {
@@ -22,10 +23,12 @@ struct Lump {
   double h;
 };
 
-// A fused model over the plane z = 0 (outward -z): vertices raised by the
-// lumps (cones of radius 0.3), deviation and a constant sigma.
-TriangleMesh Model(const std::vector<Lump>& lumps, double sigma) {
-  TriangleMesh m = test::MakeGrid(40, 40, 0.05);
+// A fused model over the plane z = 0 (outward -z; 2 x 2 m, vertices
+// `spacing` apart): vertices raised by the lumps (cones of radius 0.3),
+// deviation and a constant sigma.
+TriangleMesh Model(const std::vector<Lump>& lumps, double sigma, double spacing = 0.05) {
+  const int n = static_cast<int>(std::lround(2.0 / spacing));
+  TriangleMesh m = test::MakeGrid(n, n, spacing);
   for (Face& f : m.faces) std::swap(f[1], f[2]);
   std::vector<double> dev(m.num_vertices(), 0.0);
   for (std::size_t i = 0; i < m.num_vertices(); ++i) {
@@ -115,7 +118,8 @@ TEST(SurveyCompare, RegistersTheSecondSurveyBeforeComparing) {
   moved[1].h = 0.16;                                                           // grew by 4 cm
   const Pose x_ba = Pose::FromXyzRpy(0.30, -0.25, 0, 0, 0, 1.5 * M_PI / 180);  // B's map of A's places
   for (Lump& l : moved) l.c = (x_ba * Eigen::Vector3d(l.c.x(), l.c.y(), 0)).head<2>();
-  const TriangleMesh ma = Model(a, 0.004), mb = Model(moved, 0.004);
+  // The peaks that register the maps stand at model vertices: 1 cm apart.
+  const TriangleMesh ma = Model(a, 0.004, 0.01), mb = Model(moved, 0.004, 0.01);
   const std::vector<DetectedObject> oa = Objects(a, "a"), ob = Objects(moved, "b");
   SurveyCompareOptions o;
   const SurveyComparison c = CompareSurveys(cad, ma, oa, mb, ob, o);
@@ -175,6 +179,115 @@ TEST(SurveyCompare, LooksUpAnObjectMissedByOneMapInItsHeightField) {
   EXPECT_TRUE(c.objects[2].from_height_field);
   EXPECT_EQ(c.objects[2].kind, ObjectChangeKind::kUnchanged);
   EXPECT_NEAR(c.objects[2].height_b, 0.068, 0.005);
+}
+
+// An object made of lumps `which` of `lumps` with its footprint's vertices
+// (those of the model above 2 cm nearest one of them), as the mapping
+// writes them.
+DetectedObject Joined(const TriangleMesh& model, const std::vector<Lump>& lumps, const std::vector<std::size_t>& which,
+                      const std::string& id) {
+  DetectedObject o;
+  o.id = id;
+  const std::vector<double>& dev = *model.FindScalar("deviation");
+  for (std::size_t i = 0; i < model.num_vertices(); ++i) {
+    if (dev[i] <= 0.02) continue;
+    std::size_t nearest = 0;
+    for (std::size_t k = 1; k < lumps.size(); ++k) {
+      if ((model.vertices[i].head<2>() - lumps[k].c).norm() < (model.vertices[i].head<2>() - lumps[nearest].c).norm()) {
+        nearest = k;
+      }
+    }
+    if (std::find(which.begin(), which.end(), nearest) == which.end()) continue;
+    o.vertices.push_back(static_cast<int>(i));
+    o.max_height = std::max(o.max_height, dev[i]);
+  }
+  for (const std::size_t k : which) o.centroid_m += Eigen::Vector3d(lumps[k].c.x(), lumps[k].c.y(), 0) / which.size();
+  return o;
+}
+
+// Touching lumps that one map splits and the other joins: the joined
+// object's max stands on one lump, so comparing objects' max heights saw a
+// grown lump next to the highest one as unchanged (or a neighbour's top as
+// growth). Compared at each peak, the grown lump is grown and its
+// neighbours unchanged, whichever way the maps cut them.
+TEST(SurveyCompare, ComparesJoinedAndSplitLumpsAtTheirPeaks) {
+  TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
+  for (Face& f : cad.faces) std::swap(f[1], f[2]);
+  cad.ComputeNormals();
+  // Three lumps in a row, 0.4 m apart (their cones touch): the middle one
+  // grows by 5 cm, below the highest.
+  const std::vector<Lump> a = {{{0.6, 1.0}, 0.20}, {{1.0, 1.0}, 0.12}, {{1.4, 1.0}, 0.15}};
+  std::vector<Lump> b = a;
+  b[1].h = 0.17;
+  const TriangleMesh ma = Model(a, 0.004), mb = Model(b, 0.004);
+  SurveyCompareOptions o;
+  o.register_surveys = false;  // nothing to register: three peaks in a row
+  // A splits all three; B joins them into one object.
+  const std::vector<DetectedObject> split = {Joined(ma, a, {0}, "a1"), Joined(ma, a, {1}, "a2"),
+                                             Joined(ma, a, {2}, "a3")};
+  const std::vector<DetectedObject> joined = {Joined(mb, b, {0, 1, 2}, "b1")};
+  for (const bool a_split : {true, false}) {
+    // The other way round: A joins, B splits.
+    const std::vector<DetectedObject> oa =
+        a_split ? split : std::vector<DetectedObject>{Joined(ma, a, {0, 1, 2}, "a1")};
+    const std::vector<DetectedObject> ob =
+        a_split
+            ? joined
+            : std::vector<DetectedObject>{Joined(mb, b, {0}, "b1"), Joined(mb, b, {1}, "b2"), Joined(mb, b, {2}, "b3")};
+    const SurveyComparison c = CompareSurveys(cad, ma, oa, mb, ob, o);
+    ASSERT_EQ(c.objects.size(), 3u) << a_split;
+    int grown = 0;
+    for (const ObjectChange& x : c.objects) {
+      EXPECT_FALSE(x.from_height_field);
+      if (x.kind == ObjectChangeKind::kGrown) {
+        ++grown;
+        EXPECT_NEAR(x.change, 0.05, 1e-9);
+        EXPECT_NEAR(x.height_b, 0.17, 1e-9);
+        EXPECT_NEAR(x.centroid.x(), 1.0, 1e-9);  // the grown lump's top
+        EXPECT_EQ(a_split ? x.id_a : x.id_b, a_split ? "a2" : "b2");
+      } else {
+        EXPECT_EQ(x.kind, ObjectChangeKind::kUnchanged) << x.id_a << " " << x.id_b;
+        EXPECT_NEAR(x.change, 0.0, 1e-9);
+      }
+    }
+    EXPECT_EQ(grown, 1) << a_split;
+  }
+}
+
+// The footprints' vertices travel in objects.json; an index model.ply does
+// not have is refused naming the file and field.
+TEST(SurveyCompare, ReadsTheObjectsFootprintsAndRefusesBadOnes) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(::testing::TempDir()) / "hi_compare_vertices";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<Lump> lumps = {{{0.5, 0.5}, 0.10}};
+  MeshSaveOptions ply;
+  ply.binary = true;
+  SaveMesh(Model(lumps, 0.004), (dir / "model.ply").string(), ply);
+  auto objects = [&](const std::string& vertices) {
+    WriteFileAtomic((dir / "objects.json").string(),
+                    "{\"format\": \"hull-mapping-objects\", \"version\": 1, \"objects\": [\n"
+                    "{\"id\": \"obj-1\", \"centroid\": [0.5, 0.5, 0], \"max_height\": 0.1,\n"
+                    " \"vertices\": " +
+                        vertices + "}]}");
+  };
+  objects("[10, 11, 12]");
+  const MappingResultsOnDisk r = ReadMappingResultsForCompare(dir.string());
+  ASSERT_EQ(r.objects.size(), 1u);
+  EXPECT_EQ(r.objects[0].vertices, (std::vector<int>{10, 11, 12}));
+  for (const char* bad : {"[10, 1681]", "[-1]", "[2.5]", "[\"x\"]"}) {
+    objects(bad);
+    try {
+      ReadMappingResultsForCompare(dir.string());
+      ADD_FAILURE() << "no error for " << bad;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("objects.json"), std::string::npos) << what;
+      EXPECT_NE(what.find("vertices"), std::string::npos) << what;
+      EXPECT_NE(what.find(":3"), std::string::npos) << what;  // the line
+    }
+  }
 }
 
 TEST(SurveyCompare, ReportsProgressAndStopsWhenCancelled) {
