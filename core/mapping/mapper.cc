@@ -178,11 +178,23 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
     apex_feet.push_back(r.peaks[i].foot);
     apex_peak.push_back(i);
   }
+  // Peak features (shape_fusion.h): lump tops that no keyframe could mesh.
+  std::vector<PeakFeature> peak_features;
+  std::vector<int> peak_vertex;
   if (o.fusion_along_normal && o.fusion_keep_peaks) {
+    const Pose x_Mg = input.x_gM.Inverse();
+    std::vector<Eigen::Vector3d> landmarks_M(input.landmarks.size());
+    std::vector<double> landmark_deviation(input.landmarks.size());
+    for (std::size_t i = 0; i < input.landmarks.size(); ++i) {
+      landmarks_M[i] = x_Mg * input.landmarks[i].p_g;
+      landmark_deviation[i] = input.landmarks[i].deviation;
+    }
+    peak_features = FindPeakFeatures(shapes, landmarks_M, landmark_deviation, *cad_index, o.tau, o.object_min_height,
+                                     o.dbscan_eps, o.fusion_support);
     auto next = std::make_unique<Snapped>();
     next->mesh = refined->refined.mesh;
-    SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, input.x_gM.Inverse(), o.fusion_support,
-                           o.object_min_height, 0.6 * o.refine_edge, apex_feet, &apex_vertex);
+    SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, x_Mg, o.fusion_support, o.object_min_height,
+                           0.6 * o.refine_edge, apex_feet, &apex_vertex, peak_features, &peak_vertex);
     next->tree = std::make_unique<PointConeTree>(next->mesh.vertices);
     next->index = std::make_unique<PointIndex>(next->mesh.vertices);
     snapped = std::move(next);
@@ -222,6 +234,11 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
     peak.placement = "placed";
     peak.vertex = v;
     ++s.peaks_placed;
+  }
+  if (!peak_features.empty()) {
+    s.peak_features = peak_features.size();
+    s.peak_features_raised =
+        static_cast<std::size_t>(RaisePeakFeatures(prior, peak_features, peak_vertex, o.object_min_height, fused));
   }
   s.seconds.fusion = Since(t);
 

@@ -180,6 +180,8 @@ void WriteSummary(const MappingResult& r, const std::string& dir) {
   sum.Set("vertices_fused", Count(s.vertices_fused));
   sum.Set("peaks_fitted", Count(s.peaks_fitted));
   sum.Set("peaks_placed", Count(s.peaks_placed));
+  sum.Set("peak_features", Count(s.peak_features));
+  sum.Set("peak_features_raised", Count(s.peak_features_raised));
   sum.Set("fusion_hits", Count(s.fusion_hits));
   sum.Set("region_cells", Count(s.region_cells));
   sum.Set("refined_area", s.refined_area);

@@ -36,9 +36,11 @@ struct MappingSummary {
   std::size_t model_vertices = 0, model_faces = 0;
   std::size_t vertices_fused = 0, fusion_hits = 0;
   std::size_t peaks_fitted = 0, peaks_placed = 0;  // apexes accepted by the peak fit, and put into the model
-  std::size_t region_cells = 0;                    // cells of the region the cached mesh was refined for
-  double refined_area = 0;                         // m^2 remeshed to refine_edge
-  bool refinement_reused = false;                  // the cached refined mesh served this run
+  // Peak features (shape_fusion.h: lump tops no keyframe meshed), and those whose vertex rose to them.
+  std::size_t peak_features = 0, peak_features_raised = 0;
+  std::size_t region_cells = 0;                                // cells of the region the cached mesh was refined for
+  double refined_area = 0;                                     // m^2 remeshed to refine_edge
+  bool refinement_reused = false;                              // the cached refined mesh served this run
   double hull_area = 0, inspected_area = 0, covered_area = 0;  // m^2 (zones only: decks excluded)
   MappingTimings seconds;
 };

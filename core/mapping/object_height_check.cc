@@ -151,6 +151,8 @@ std::vector<ObjectHeightCheck> CheckObjectHeights(const TriangleMesh& model, con
       if ((vertices[v] - o.center).norm() > r + 4 * o.Height() + 0.05) continue;
       if (surface.TopAt(vertices[v], f.n, reach, nullptr) != static_cast<int>(i)) continue;
       heights.push_back((*deviation)[v]);
+      if (c.model_max_vertex < 0 || (*deviation)[v] > (*deviation)[static_cast<std::size_t>(c.model_max_vertex)])
+        c.model_max_vertex = static_cast<int>(v);
       c.fused_vertices += (*fusions)[v] > 0;
       if (object_of[v] >= 0) detected.insert(objects[static_cast<std::size_t>(object_of[v])].id);
     }

@@ -42,6 +42,7 @@ struct ObjectHeightCheck {
   double true_max = 0;            // the true surface's highest point in its region (NaN: buried)
   double model_max = 0;           // the fused model's highest vertex in its region (deviation, m)
   double model_p95 = 0;           // 95th percentile of those vertices' deviation (nearest rank)
+  int model_max_vertex = -1;      // the model vertex of model_max (-1: none in its region)
   int model_vertices = 0;         // model vertices in its region
   int fused_vertices = 0;         // of them, moved by the fusion (fusions > 0)
   double feature_max = 0;         // the highest adjusted landmark deviation in its region

@@ -6,7 +6,10 @@
 #include <atomic>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <map>
+#include <memory>
+#include <tuple>
 
 #include "geometry/point_index.h"
 #include "mapping/shape_raycast.h"
@@ -114,7 +117,8 @@ Eigen::Vector3d CombineHits(const std::vector<Eigen::Vector3d>& hits, const Eige
 int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
                            const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
                            double max_move, const std::vector<Eigen::Vector3d>& apex_feet,
-                           std::vector<int>* apex_vertex) {
+                           std::vector<int>* apex_vertex, const std::vector<PeakFeature>& peaks,
+                           std::vector<int>* peak_vertex) {
   // Per landmark: the keyframes whose shapes hold it, its deviation and
   // position (in g).
   struct Feature {
@@ -134,10 +138,13 @@ int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, c
       }
     }
   }
-  std::vector<std::pair<double, int>> order;  // (-deviation, landmark): highest first
+  // (-deviation, landmark, peak feature or -1): highest first.
+  std::vector<std::tuple<double, int, int>> order;
   for (const auto& [l, f] : features) {
-    if (f.keyframes >= support) order.push_back({-f.deviation, l});
+    if (f.keyframes >= support) order.emplace_back(-f.deviation, l, -1);
   }
+  for (std::size_t i = 0; i < peaks.size(); ++i)
+    order.emplace_back(-peaks[i].deviation, peaks[i].landmark, static_cast<int>(i));
   std::sort(order.begin(), order.end());
   // Faces per vertex (CSR).
   const std::size_t nv = prior.num_vertices();
@@ -191,11 +198,127 @@ int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, c
     const int v = snap(apex_feet[i]);
     if (apex_vertex) (*apex_vertex)[i] = v;
   }
-  for (const auto& [neg_deviation, l] : order) {
+  if (peak_vertex) peak_vertex->assign(peaks.size(), -1);
+  for (const auto& [neg_deviation, l, peak] : order) {
     (void)neg_deviation;
-    snap(cad.Closest(x_Mg * features.at(l).p_g).point);
+    if (peak < 0) {
+      snap(cad.Closest(x_Mg * features.at(l).p_g).point);
+      continue;
+    }
+    const int v = snap(peaks[static_cast<std::size_t>(peak)].foot);
+    if (peak_vertex) (*peak_vertex)[static_cast<std::size_t>(peak)] = v;
   }
   prior.ComputeNormals();
+  return count;
+}
+
+std::vector<PeakFeature> FindPeakFeatures(const std::vector<KeyframeShapes>& shapes,
+                                          const std::vector<Eigen::Vector3d>& landmarks_M,
+                                          const std::vector<double>& deviation, const MeshIndex& cad, double tau,
+                                          double min_height, double eps, int support) {
+  // Per landmark standing above min_height: the keyframes where it is a
+  // point to cluster above tau (a seed), and those whose shapes hold it.
+  std::map<int, std::pair<int, int>> views;
+  for (const KeyframeShapes& ks : shapes) {
+    std::vector<char> in_shape(ks.points.size(), 0);
+    for (const DetectedShape& sh : ks.shapes) {
+      for (const int pi : sh.points) in_shape[static_cast<std::size_t>(pi)] = 1;
+    }
+    for (std::size_t i = 0; i < ks.points.size(); ++i) {
+      const ShapePoint& p = ks.points[i];
+      if (!(p.deviation > min_height)) continue;
+      auto& [seen, shaped] = views[p.landmark];
+      seen += p.deviation > tau;
+      shaped += in_shape[i];
+    }
+  }
+  // The features the fusion reaches (shape vertices in `support` keyframes),
+  // by their feet: the level the shapes reach around a candidate.
+  std::vector<Eigen::Vector3d> supported_feet;
+  std::vector<double> supported_height;
+  for (const auto& [l, v] : views) {
+    if (v.second < support) continue;
+    supported_feet.push_back(cad.Closest(landmarks_M[static_cast<std::size_t>(l)]).point);
+    supported_height.push_back(deviation[static_cast<std::size_t>(l)]);
+  }
+  std::unique_ptr<PointIndex> supported;
+  if (!supported_feet.empty()) supported = std::make_unique<PointIndex>(supported_feet);
+  std::vector<PeakFeature> candidates;
+  for (const auto& [l, v] : views) {
+    if (v.first < support || v.second >= support) continue;
+    const Eigen::Vector3d foot = cad.Closest(landmarks_M[static_cast<std::size_t>(l)]).point;
+    // It must stand above every supported feature within eps: a peak the
+    // shapes missed, not a flank feature below what they reach.
+    double level = -std::numeric_limits<double>::infinity();
+    if (supported) {
+      for (const auto& [k, d2] : supported->Within(foot, eps, false)) {
+        (void)d2;
+        level = std::max(level, supported_height[static_cast<std::size_t>(k)]);
+      }
+    }
+    if (!(deviation[static_cast<std::size_t>(l)] > level)) continue;
+    PeakFeature f;
+    f.landmark = l;
+    f.deviation = deviation[static_cast<std::size_t>(l)];
+    f.foot = foot;
+    f.views = v.first;
+    f.shape_views = v.second;
+    candidates.push_back(f);
+  }
+  // Confirmed by the nearest other candidate within eps (feet on the CAD).
+  std::vector<PeakFeature> out;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    double best = eps * eps;
+    for (std::size_t j = 0; j < candidates.size(); ++j) {
+      const double d2 = (candidates[j].foot - candidates[i].foot).squaredNorm();
+      if (j == i || !(d2 <= best)) continue;
+      best = d2;
+      candidates[i].confirmed_by = candidates[j].landmark;
+    }
+    if (candidates[i].confirmed_by >= 0) out.push_back(candidates[i]);
+  }
+  std::sort(out.begin(), out.end(), [](const PeakFeature& a, const PeakFeature& b) {
+    return a.deviation != b.deviation ? a.deviation > b.deviation : a.landmark < b.landmark;
+  });
+  return out;
+}
+
+int RaisePeakFeatures(const TriangleMesh& prior, const std::vector<PeakFeature>& peaks,
+                      const std::vector<int>& peak_vertex, double min_height, FusionResult& fused,
+                      std::vector<char>* raised) {
+  if (raised) raised->assign(peaks.size(), 0);
+  // The fusion's height of a vertex along its prior normal (0: not fused).
+  auto height = [&](std::size_t v) {
+    return fused.support[v] > 0 ? (fused.vertices[v] - prior.vertices[v]).dot(prior.vertex_normals[v]) : 0.0;
+  };
+  // Judged on the fusion's result alone, before any vertex rises, so that the
+  // peaks do not depend on each other's order.
+  std::vector<char> joins(peaks.size(), 0);
+  std::map<int, std::size_t> peak_at;  // vertex -> peak (SnapVerticesToFeatures moves each vertex once)
+  for (std::size_t i = 0; i < peaks.size(); ++i) {
+    if (peak_vertex[i] >= 0) peak_at[peak_vertex[i]] = i;
+  }
+  for (const Face& f : prior.faces) {
+    for (const int v : f) {
+      const auto it = peak_at.find(v);
+      if (it == peak_at.end()) continue;
+      for (const int n : f) {
+        if (n != v && height(static_cast<std::size_t>(n)) > min_height) joins[it->second] = 1;
+      }
+    }
+  }
+  int count = 0;
+  for (std::size_t i = 0; i < peaks.size(); ++i) {
+    const int v = peak_vertex[i];
+    if (v < 0 || !joins[i]) continue;
+    const std::size_t vi = static_cast<std::size_t>(v);
+    if (!(height(vi) < peaks[i].deviation)) continue;
+    fused.vertices[vi] = prior.vertices[vi] + peaks[i].deviation * prior.vertex_normals[vi];
+    fused.support[vi] = std::max(fused.support[vi], peaks[i].views);
+    fused.count[vi] = std::max(fused.count[vi], peaks[i].views);
+    if (raised) (*raised)[i] = 1;
+    ++count;
+  }
   return count;
 }
 

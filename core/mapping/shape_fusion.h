@@ -94,6 +94,42 @@ FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<P
                                   const std::vector<KeyframeShapes>& shapes, double fusion_radius,
                                   const FusionRule& rule = FusionRule{});
 
+// Peak features (with the fusion along normals and keep_peaks). A narrow
+// lump's top features may be DBSCAN noise in every keyframe that saw them:
+// a pass that saw the top but none of the flanks above the hysteresis level
+// has nothing to cluster them with, while another pass's shapes cover the
+// flanks (the demo's 0.18 m strip-8 from the images: its 0.169 and 0.131 m
+// features, 4 cm apart, are seen by keyframes 155 and 156 only, each
+// other's only neighbour there; keyframes 179-181 mesh the lump up to
+// 0.122 m). The support rule then never sees them. A peak feature is a
+// landmark that
+//
+// - stands above tau (a seed) and min_height in at least `support`
+//   keyframes (views) but is a shape vertex in fewer (else the fusion
+//   reaches it anyway), and
+// - stands above every feature the fusion reaches (a shape vertex in
+//   `support` keyframes) whose foot on the CAD lies within eps of its own:
+//   a top the shapes missed, not a flank feature below what they reach, and
+// - is confirmed by a second such landmark whose foot lies within eps of
+//   its own (two features, each seen from two views: one wrong match, or one
+//   landmark alone, raises nothing).
+//
+// Highest first. RaisePeakFeatures decides which of them reach the model.
+// landmarks_M / deviation: every landmark's position in M and its signed
+// distance to the CAD, indexed like ShapePoint::landmark.
+struct PeakFeature {
+  int landmark = 0;                                // index into the landmarks
+  double deviation = 0;                            // its height above the CAD (m)
+  Eigen::Vector3d foot = Eigen::Vector3d::Zero();  // its closest point on the CAD (in M)
+  int views = 0;                                   // keyframes where it stands above tau
+  int shape_views = 0;                             // keyframes whose shapes hold it
+  int confirmed_by = -1;                           // the nearest confirming peak feature's landmark
+};
+std::vector<PeakFeature> FindPeakFeatures(const std::vector<KeyframeShapes>& shapes,
+                                          const std::vector<Eigen::Vector3d>& landmarks_M,
+                                          const std::vector<double>& deviation, const MeshIndex& cad, double tau,
+                                          double min_height, double eps, int support);
+
 // Before the fusion along normals: a narrow peak reaches the model only
 // where a vertex lies under its top feature (between vertices each view's
 // triangulation interpolates it to a different, lower height). So the prior
@@ -110,10 +146,27 @@ FusionResult FuseShapesBruteForce(const TriangleMesh& prior, const std::vector<P
 // apex_feet (in M, on the CAD): fitted apexes of lumps (FitPeaks,
 // peak_fit.h), served before every feature, in their order, the same way;
 // *apex_vertex gets the vertex moved onto each (-1: none could be).
+//
+// peaks (FindPeakFeatures): served with the features, highest first, the
+// same way; *peak_vertex gets the vertex moved onto each one's foot (-1:
+// none could be).
 int SnapVerticesToFeatures(TriangleMesh& prior, const PointIndex& prior_index, const MeshIndex& cad,
                            const std::vector<KeyframeShapes>& shapes, const Pose& x_Mg, int support, double min_height,
                            double max_move, const std::vector<Eigen::Vector3d>& apex_feet = {},
-                           std::vector<int>* apex_vertex = nullptr);
+                           std::vector<int>* apex_vertex = nullptr, const std::vector<PeakFeature>& peaks = {},
+                           std::vector<int>* peak_vertex = nullptr);
+
+// After the fusion: the vertex moved under each peak feature (peak_vertex,
+// from SnapVerticesToFeatures) rises along its prior normal to the feature's
+// height when the fusion left it lower and it joins an object the shapes
+// made: one of its neighbours (over the mesh's edges) was fused above
+// min_height. So a peak feature completes an object two views' shapes found
+// and can never make one. prior: the mesh the fusion ran on. Returns how
+// many vertices rose; *raised (optional) gets, per peak, whether its vertex
+// rose.
+int RaisePeakFeatures(const TriangleMesh& prior, const std::vector<PeakFeature>& peaks,
+                      const std::vector<int>& peak_vertex, double min_height, FusionResult& fused,
+                      std::vector<char>* raised = nullptr);
 
 // A vertex's hits (in the order the loops meet them) combined by `rule`;
 // prior/normal: the prior vertex and its outward normal. Sets *support.

@@ -30,7 +30,13 @@
 // from the TRUE camera onto the true scene (what it shows), the track's true
 // point reprojected into each true camera, the adjusted point's residual
 // with the adjusted camera, and how far a 2 px step of the pixel moves the
-// hit (a jump: the pixel sits on an occlusion boundary).
+// hit (a jump: the pixel sits on an occlusion boundary). Before that it
+// prints the object's three highest landmarks per keyframe that observed
+// them (their Algorithm 1 label, the shape that holds them and the points
+// above the hysteresis level within eps on the image plane), the model
+// vertices within 6 cm of them (height, distance, fusions), and the model's
+// highest vertex in the object's region with the true surface under it and
+// the landmarks around it.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -74,7 +80,7 @@ struct TraceRequest {
 // true max, traced to their tracks against the true scene (see --trace).
 void TraceObject(const PipelineInputs& in, const MappingInput& input, const ObjectHeightCheck& c,
                  const TrueObject& object, const TriangleMesh& model, const Pose& model_to_true,
-                 const TraceRequest& req) {
+                 const std::vector<KeyframeShapes>& shapes, const MappingOptions& mo, const TraceRequest& req) {
   const SurveyBundle& b = in.bundle;
   if (!b.truth || b.directory.empty()) return;
   const std::unique_ptr<TrueScene> scene = TrueScene::Load(b);
@@ -110,15 +116,84 @@ void TraceObject(const PipelineInputs& in, const MappingInput& input, const Obje
       std::printf(" %.3f/%.3f", on[i].first, adjusted_h[on[i].second]);
     std::printf("\n");
   }
-  // The model's highest vertices near the object (not only in its region),
-  // and the landmarks near them: what the fusion may have moved them with.
-  const std::vector<double>* deviation = model.FindScalar("deviation");
-  const std::vector<double>* fusions = model.FindScalar("fusions");
+  // The region's highest landmarks, per keyframe that observed them: their
+  // label in Algorithm 1 (cluster, noise, below tau), the shape that holds
+  // them and the clustered points around them on the image plane.
+  for (std::size_t t = 0; t < std::min<std::size_t>(3, c.landmarks.size()); ++t) {
+    const int li = c.landmarks[t];
+    std::printf("  top landmark %d (adjusted h %.3f m) per keyframe:\n", li,
+                input.landmarks[static_cast<std::size_t>(li)].deviation);
+    {
+      const Eigen::Vector3d q = input.x_gM.Inverse() * input.landmarks[static_cast<std::size_t>(li)].p_g;
+      const std::vector<double>* dev = model.FindScalar("deviation");
+      const std::vector<double>* fus = model.FindScalar("fusions");
+      std::printf("    model vertices within 0.06 m:");
+      for (std::size_t v = 0; dev && fus && v < model.num_vertices(); ++v) {
+        const Eigen::Vector3d d = model_to_true * model.vertices[v] - model_to_true * q;
+        const double across = (d - d.dot(object.normal) * object.normal).norm();
+        if (across <= 0.06) std::printf(" %.3f@%.3f(%g)", (*dev)[v], across, (*fus)[v]);
+      }
+      std::printf("\n");
+    }
+    for (const KeyframeShapes& k : shapes) {
+      const auto it =
+          std::find_if(k.points.begin(), k.points.end(), [&](const ShapePoint& p) { return p.landmark == li; });
+      if (it == k.points.end()) continue;
+      std::string in_shape = "no shape";
+      for (const DetectedShape& s : k.shapes) {
+        const auto v = std::find(s.points.begin(), s.points.end(), static_cast<int>(it - k.points.begin()));
+        if (v == s.points.end()) continue;
+        int corner_of = 0;
+        const int local = static_cast<int>(v - s.points.begin());
+        for (const Face& f : s.triangles) corner_of += f[0] == local || f[1] == local || f[2] == local;
+        double top = 0;
+        for (const double d : s.deviation) top = std::max(top, std::abs(d));
+        in_shape = "shape of cluster " + std::to_string(s.cluster) + " (" + std::to_string(s.points.size()) +
+                   " vertices, " + std::to_string(s.triangles.size()) + " triangles, corner of " +
+                   std::to_string(corner_of) + ", top " + std::to_string(top) + ")";
+      }
+      std::printf("    kf %lld: label %d, px (%.0f, %.0f), depth %.2f, %s; within eps (|d|@distance[label]):",
+                  static_cast<long long>(k.id), it->cluster, it->pixel.x(), it->pixel.y(), it->p_c.z(),
+                  in_shape.c_str());
+      int low = 0;  // below the hysteresis level
+      for (const ShapePoint& q : k.points) {
+        if (&q == &*it || (q.p_c.head<2>() - it->p_c.head<2>()).norm() > mo.dbscan_eps) continue;
+        if (std::abs(q.deviation) <= std::min(mo.tau, mo.shape_grow_height)) {
+          ++low;
+          continue;
+        }
+        std::printf(" %.3f@%.3f[%d]", std::abs(q.deviation), (q.p_c.head<2>() - it->p_c.head<2>()).norm(), q.cluster);
+      }
+      std::printf(" and %d below the level\n", low);
+    }
+  }
   const double reach = 0.5 * std::hypot(object.size.x(), object.size.y()) + object.radius + 0.15;
   auto lateral = [&](const Eigen::Vector3d& p_true_M) {
     const Eigen::Vector3d d = p_true_M - object.center;
     return (d - d.dot(object.normal) * object.normal).norm();
   };
+  // The model's highest vertex in the region, and the landmarks near it.
+  if (c.model_max_vertex >= 0) {
+    const std::size_t v = static_cast<std::size_t>(c.model_max_vertex);
+    const Eigen::Vector3d p = model.vertices[v];
+    const Eigen::Vector3d p_true = model_to_true * p;
+    const RayHit below = scene->index().Raycast(p_true + 0.5 * object.normal, -object.normal);
+    std::printf(
+        "  its highest model vertex %zu: h %.4f m, %g fusions, the true surface there %s at h %.4f m, %.3f m "
+        "from the centre; landmarks within 0.06 m across the normal (h@distance):",
+        v, c.model_max, model.FindScalar("fusions") ? (*model.FindScalar("fusions"))[v] : std::nan(""),
+        what(below).c_str(), below.hit ? cad.SignedDistance(below.point) : std::nan(""), lateral(p_true));
+    for (std::size_t l = 0; l < input.landmarks.size(); ++l) {
+      const Eigen::Vector3d d = model_to_true * (input.x_gM.Inverse() * input.landmarks[l].p_g) - p_true;
+      const double across = (d - d.dot(object.normal) * object.normal).norm();
+      if (across <= 0.06) std::printf(" %.3f@%.3f", input.landmarks[l].deviation, across);
+    }
+    std::printf("\n");
+  }
+  // The model's highest vertices near the object (not only in its region),
+  // and the landmarks near them: what the fusion may have moved them with.
+  const std::vector<double>* deviation = model.FindScalar("deviation");
+  const std::vector<double>* fusions = model.FindScalar("fusions");
   std::vector<std::pair<double, std::size_t>> near_vertices;
   std::vector<int> near_landmarks;
   for (std::size_t v = 0; deviation && v < model.num_vertices(); ++v) {
@@ -215,7 +290,7 @@ ObjectScore ScoreObjects(const PipelineInputs& in, const PipelineResult& r, cons
     for (const ObjectHeightCheck& c : checks) {
       if (c.id != trace.object) continue;
       for (const TrueObject& o : sim.bundle.truth->objects)
-        if (o.id == c.id) TraceObject(in, input, c, o, m.model, model_to_true, trace);
+        if (o.id == c.id) TraceObject(in, input, c, o, m.model, model_to_true, m.keyframes, m.options, trace);
     }
   }
   std::printf("%s", ObjectHeightTable(checks, min_height, 0.01).c_str());

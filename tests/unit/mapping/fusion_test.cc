@@ -7,6 +7,7 @@
 // against the scene.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -297,6 +298,111 @@ TEST(Mapper, ObjectInspectionAndCaching) {
   // Bad options are refused before any work.
   o.alpha = -1;
   EXPECT_THROW(mapper.Run(o, p), OptionError);
+}
+
+// Peak features (shape_fusion.h): a narrow top seen by a pass that saw none
+// of the flanks (its features are DBSCAN noise in every keyframe that saw
+// them) reaches the model when two such features, each seen from two views,
+// stand above an object the shapes made; one feature, one view, or a pair
+// over clean hull raise nothing.
+struct Top {
+  Eigen::Vector2d xy;
+  double height;
+};
+
+// The disk scene plus landmarks `tops` observed only by extra keyframes
+// (ids 30, 31, ... 1.5 m below the disk's centre, looking up): top i by the
+// keyframes views[i] (indices into those extra keyframes). Returns the
+// mapping and the fused model's highest vertex within `radius` of `at`.
+MappingResult MapWithTops(const std::vector<Top>& tops, const std::vector<std::vector<int>>& views, int keyframes,
+                          const Eigen::Vector2d& at, double radius, double* model_max) {
+  Scene s = MakeScene(0.0);
+  std::vector<int> top_landmark;
+  for (const Top& t : tops) {
+    top_landmark.push_back(static_cast<int>(s.input.landmarks.size()));
+    s.input.landmarks.push_back({static_cast<std::int64_t>(s.input.landmarks.size()),
+                                 Eigen::Vector3d(t.xy.x(), t.xy.y(), -t.height), t.height});
+  }
+  for (int k = 0; k < keyframes; ++k) {
+    MappingKeyframe kf;
+    kf.id = 30 + k;
+    kf.x_g_cT = Pose(Eigen::Matrix3d::Identity(), Eigen::Vector3d(kDisk.x() + 0.1 * k, kDisk.y(), -1.5));
+    for (std::size_t i = 0; i < tops.size(); ++i) {
+      if (std::find(views[i].begin(), views[i].end(), k) != views[i].end()) kf.landmarks.push_back(top_landmark[i]);
+    }
+    std::sort(kf.landmarks.begin(), kf.landmarks.end());
+    s.input.keyframes.push_back(std::move(kf));
+  }
+  Mapper mapper(s.input, s.cad);
+  NullProgress p;
+  MappingResult r = mapper.Run(MappingOptions{}, p);
+  const std::vector<double>& h = *r.model.FindScalar("deviation");
+  *model_max = 0;
+  for (std::size_t v = 0; v < r.model.num_vertices(); ++v) {
+    if ((r.model.vertices[v].head<2>() - at).norm() <= radius) *model_max = std::max(*model_max, h[v]);
+  }
+  return r;
+}
+
+TEST(Mapper, PeakFeaturesSeenByTwoViewsRaiseTheObjectTheShapesFound) {
+  const MappingOptions o;
+  const Eigen::Vector2d a = kDisk + Eigen::Vector2d(0.02, 0.01), b = kDisk + Eigen::Vector2d(-0.02, 0.0);
+  double top = 0;
+  // Two tops (0.16 and 0.14 m over the 0.10 m disk, 4 cm apart), each seen by
+  // keyframes 30 and 31, where they are each other's only neighbour: DBSCAN
+  // noise there, and no other keyframe observed them.
+  {
+    const MappingResult r = MapWithTops({{a, 0.16}, {b, 0.14}}, {{0, 1}, {0, 1}}, 2, kDisk, kRadius, &top);
+    for (const KeyframeShapes& k : r.keyframes) {
+      for (const ShapePoint& pt : k.points) {
+        if (pt.deviation > 0.12) {
+          EXPECT_EQ(pt.cluster, ShapePoint::kNoise);
+        }
+      }
+    }
+    EXPECT_EQ(r.summary.peak_features, 2u);
+    EXPECT_EQ(r.summary.peak_features_raised, 2u);
+    EXPECT_NEAR(top, 0.16, 1e-6);
+    ASSERT_EQ(r.objects.size(), 1u);
+    EXPECT_NEAR(r.objects[0].max_height, 0.16, 1e-6);
+  }
+  // Without them the disk's top is the model's top (the reference).
+  {
+    MapWithTops({}, {}, 0, kDisk, kRadius, &top);
+    EXPECT_NEAR(top, kHeight, 1e-6);
+  }
+  // One top alone, seen by two views (a wrong match tracked over two
+  // keyframes): nothing rises.
+  {
+    const MappingResult r = MapWithTops({{a, 0.16}}, {{0, 1}}, 2, kDisk, kRadius, &top);
+    EXPECT_EQ(r.summary.peak_features, 0u);
+    EXPECT_NEAR(top, kHeight, 1e-6);
+  }
+  // Two tops, each seen by one keyframe only: nothing rises.
+  {
+    const MappingResult r = MapWithTops({{a, 0.16}, {b, 0.14}}, {{0}, {1}}, 2, kDisk, kRadius, &top);
+    EXPECT_EQ(r.summary.peak_features, 0u);
+    EXPECT_NEAR(top, kHeight, 1e-6);
+  }
+  // A top below a supported feature nearby is no peak: 0.08 m tops on the
+  // 0.10 m disk leave it as it is.
+  {
+    const MappingResult r = MapWithTops({{a, 0.08}, {b, 0.07}}, {{0, 1}, {0, 1}}, 2, kDisk, kRadius, &top);
+    EXPECT_EQ(r.summary.peak_features, 0u);
+    EXPECT_NEAR(top, kHeight, 1e-6);
+  }
+  // Two tops over clean hull, 1 m from the disk, seen by two views: peak
+  // features, but no object the shapes made is there, so none rises and no
+  // object appears.
+  {
+    const Eigen::Vector2d far = kDisk + Eigen::Vector2d(-1.0, 0.0);
+    const MappingResult r =
+        MapWithTops({{far + Eigen::Vector2d(0.02, 0.0), 0.16}, {far, 0.14}}, {{0, 1}, {0, 1}}, 2, far, 0.2, &top);
+    EXPECT_EQ(r.summary.peak_features, 2u);
+    EXPECT_EQ(r.summary.peak_features_raised, 0u);
+    EXPECT_LT(top, o.object_min_height);
+    EXPECT_EQ(r.objects.size(), 1u);
+  }
 }
 
 class CancelAfter final : public Progress {
