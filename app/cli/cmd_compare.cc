@@ -26,22 +26,23 @@ DIR/objects.csv and DIR/compare.json; DIR is replaced as a whole.
 
 The two adjustments may place the CAD model differently along the surface
 (a flat bottom leaves it free there), so B's map is first registered to A's
-by the peaks the two have in common (a RANSAC over pairs of peaks; at least
-3 needed, else none): compare.json's "registration" says how.
+by the objects' tops (highest vertices) the two have in common (a RANSAC over
+pairs of tops; at least 3 needed, else none, and each peak's heights are read
+within --match-radius): compare.json's "registration" says how.
 
 options:
   --out DIR            output folder (required)
   --mesh PATH          the CAD mesh (default: the one A's mapping.json names)
   --mesh-scale S       scale applied to --mesh on load (default 1)
   --peak-spacing M     local maxima of one map closer than M are one peak; the
-                       registration matches peaks within M (default 0.1)
+                       registration matches tops within M (default 0.1)
   --peak-reach M       both maps' heights at a peak are their highest within M
                        of it, plus twice the registration's rms (default 0.05)
   --match-radius M     the widest such disc (default 0.3)
   --change M           grown / shrunk where a peak's height changes by M, new /
                        removed where the other map stands lower (default 0.03)
   --k K                significance factor (default 1.96)
-  --max-misplacement M the most one peak may lie apart between the two maps
+  --max-misplacement M the most one top may lie apart between the two maps
                        before registration (default 5)
   --no-register        compare in M as the two results have it
 )";
@@ -83,10 +84,10 @@ int RunCompare(const CommandArgs& argv) {
   WriteSurveyComparison(c, a.Get("out"));
   const SurveyRegistration& r = c.registration;
   if (r.registered) {
-    std::printf("B registered to A by %d peaks in common (%d without): %.2f deg, %.3f m, rms %.3f m\n", r.inliers,
-                r.identity_inliers, r.rotation * 180.0 / M_PI, r.translation, r.rms);
+    std::printf("B registered to A by %d objects' tops in common (%d without): %.2f deg, %.3f m, rms %.3f m\n",
+                r.inliers, r.identity_inliers, r.rotation * 180.0 / M_PI, r.translation, r.rms);
   } else {
-    std::printf("B not registered to A (%d peaks in common as they stand)\n", r.identity_inliers);
+    std::printf("B not registered to A (%d objects' tops in common as they stand)\n", r.identity_inliers);
   }
   std::printf("%zu of %zu vertices changed significantly; heights read within %.3f m of each peak\n",
               c.significant_vertices, c.model.num_vertices(), c.reach);

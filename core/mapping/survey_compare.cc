@@ -46,26 +46,68 @@ int ObjectAt(const std::vector<int>& object_of, int vertex) {
 
 // Which detected object each vertex of a model belongs to (-1: none): the
 // object's own vertices where the results list them (objects.json
-// "vertices"), else those whose feet lie within the disc of the object's
-// area about its centroid (at least 5 cm, at most max_radius).
-std::vector<int> ObjectOfVertex(const std::vector<DetectedObject>& objects, const std::vector<Eigen::Vector3d>& feet,
-                                const PointIndex& index, double max_radius) {
+// "vertices"). Objects read without them (results written before the
+// lists) get the connected regions (over the model's edges) of the other
+// vertices at least min_height high whose mean foot lies nearest their
+// centroid, within max_radius: the footprints as the object detection made
+// them, whatever their shape (a ring of fouling's centroid is bare hull).
+std::vector<int> ObjectOfVertex(const TriangleMesh& model, const std::vector<DetectedObject>& objects,
+                                const std::vector<double>& dev, const std::vector<Eigen::Vector3d>& feet,
+                                double max_radius, double min_height) {
   std::vector<int> of(feet.size(), -1);
+  std::vector<std::size_t> unlisted;
   for (std::size_t k = 0; k < objects.size(); ++k) {
-    const DetectedObject& o = objects[k];
-    if (!o.vertices.empty()) {
-      for (const int v : o.vertices) {
-        if (v >= 0 && static_cast<std::size_t>(v) < of.size() && of[static_cast<std::size_t>(v)] < 0) {
-          of[static_cast<std::size_t>(v)] = static_cast<int>(k);
-        }
-      }
+    if (objects[k].vertices.empty()) {
+      unlisted.push_back(k);
       continue;
     }
-    const double r = std::clamp(std::sqrt(std::max(o.area, 0.0) / M_PI), 0.05, max_radius);
-    for (const auto& hit : index.Within(o.centroid_m, r, false)) {
-      int& slot = of[static_cast<std::size_t>(hit.first)];
-      if (slot < 0) slot = static_cast<int>(k);
+    for (const int v : objects[k].vertices) {
+      if (v >= 0 && static_cast<std::size_t>(v) < of.size() && of[static_cast<std::size_t>(v)] < 0) {
+        of[static_cast<std::size_t>(v)] = static_cast<int>(k);
+      }
     }
+  }
+  if (unlisted.empty()) return of;
+  // Regions: union-find over the edges between free vertices above min_height.
+  const std::size_t n = feet.size();
+  std::vector<std::size_t> parent(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  auto free_high = [&](int v) {
+    return v >= 0 && static_cast<std::size_t>(v) < n && of[static_cast<std::size_t>(v)] < 0 &&
+           dev[static_cast<std::size_t>(v)] >= min_height;
+  };
+  for (const Face& f : model.faces) {
+    for (int e = 0; e < 3; ++e) {
+      const int u = f[e], w = f[(e + 1) % 3];
+      if (free_high(u) && free_high(w)) parent[find(static_cast<std::size_t>(u))] = find(static_cast<std::size_t>(w));
+    }
+  }
+  std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
+  std::vector<int> count(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (!free_high(static_cast<int>(v))) continue;
+    sum[find(v)] += feet[v];
+    ++count[find(v)];
+  }
+  std::vector<int> region_object(n, -1);
+  for (std::size_t r = 0; r < n; ++r) {
+    if (count[r] == 0) continue;
+    const Eigen::Vector3d mean = sum[r] / count[r];
+    double best = max_radius;
+    for (const std::size_t k : unlisted) {
+      const double d = (objects[k].centroid_m - mean).norm();
+      if (d <= best) {
+        best = d;
+        region_object[r] = static_cast<int>(k);
+      }
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v) {
+    if (free_high(static_cast<int>(v))) of[v] = region_object[find(v)];
   }
   return of;
 }
@@ -73,11 +115,13 @@ std::vector<int> ObjectOfVertex(const std::vector<DetectedObject>& objects, cons
 struct Peak {
   std::size_t vertex;
   int object;
+  bool top;  // the object's highest vertex
 };
 
 // The peaks of a map's objects: every object vertex with no higher vertex
 // (ties: none of a lower index) whose foot lies within `spacing` of its own,
-// and every object's highest vertex.
+// and every object's highest vertex. Vertices without a finite height are
+// none.
 std::vector<Peak> ObjectPeaks(const std::vector<double>& dev, const std::vector<int>& object_of,
                               const std::vector<Eigen::Vector3d>& feet, const PointIndex& index,
                               std::size_t num_objects, double spacing) {
@@ -85,7 +129,7 @@ std::vector<Peak> ObjectPeaks(const std::vector<double>& dev, const std::vector<
   std::vector<int> top(num_objects, -1);
   for (std::size_t v = 0; v < object_of.size(); ++v) {
     const int k = object_of[v];
-    if (k < 0) continue;
+    if (k < 0 || !std::isfinite(dev[v])) continue;
     int& t = top[static_cast<std::size_t>(k)];
     if (t < 0 || dev[v] > dev[static_cast<std::size_t>(t)]) t = static_cast<int>(v);
     bool highest = true;
@@ -96,13 +140,16 @@ std::vector<Peak> ObjectPeaks(const std::vector<double>& dev, const std::vector<
         break;
       }
     }
-    if (highest) peaks.push_back({v, k});
+    if (highest) peaks.push_back({v, k, false});
   }
   for (std::size_t k = 0; k < num_objects; ++k) {
     if (top[k] < 0) continue;
     const std::size_t v = static_cast<std::size_t>(top[k]);
-    if (std::none_of(peaks.begin(), peaks.end(), [&](const Peak& p) { return p.vertex == v; })) {
-      peaks.push_back({v, static_cast<int>(k)});
+    const auto it = std::find_if(peaks.begin(), peaks.end(), [&](const Peak& p) { return p.vertex == v; });
+    if (it != peaks.end()) {
+      it->top = true;
+    } else {
+      peaks.push_back({v, static_cast<int>(k), true});
     }
   }
   return peaks;
@@ -140,7 +187,9 @@ void SurveyCompareOptions::Check() const {
   }
   if (!(std::isfinite(significance_k) && significance_k > 0)) throw OptionError("significance_k", "must be positive");
   if (!(std::isfinite(peak_spacing) && peak_spacing > 0)) throw OptionError("peak_spacing", "must be positive (m)");
-  if (!(std::isfinite(peak_reach) && peak_reach > 0)) throw OptionError("peak_reach", "must be positive (m)");
+  if (!(std::isfinite(peak_reach) && peak_reach > 0 && peak_reach <= match_radius)) {
+    throw OptionError("peak_reach", "must be positive (m) and at most match_radius");
+  }
   if (!(std::isfinite(max_misplacement) && max_misplacement > 0)) {
     throw OptionError("max_misplacement", "must be positive (m)");
   }
@@ -214,34 +263,43 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   // An object's change is read at its peaks, not as its max height: two maps
   // split and join touching lumps differently, and a joined object's max
   // stands on one lump only (docs/mapping.md, "Change between two surveys").
-  const std::vector<int> object_of_a = ObjectOfVertex(objects_a, feet_a, a_index, o.match_radius);
-  const std::vector<int> object_of_b = ObjectOfVertex(objects_b, own_feet_b, own_b_index, o.match_radius);
+  const std::vector<int> object_of_a =
+      ObjectOfVertex(model_a, objects_a, dev_a, feet_a, o.match_radius, o.change_threshold);
+  const std::vector<int> object_of_b =
+      ObjectOfVertex(model_b, objects_b, dev_b, own_feet_b, o.match_radius, o.change_threshold);
   const std::vector<Peak> peaks_a = ObjectPeaks(dev_a, object_of_a, feet_a, a_index, objects_a.size(), o.peak_spacing);
   const std::vector<Peak> peaks_b =
       ObjectPeaks(dev_b, object_of_b, own_feet_b, own_b_index, objects_b.size(), o.peak_spacing);
 
-  // B's map registered to A's by the peaks (their feet and the CAD's normals
-  // there): they stand where they stood whatever each map's object
-  // detection made of touching lumps, which moves objects' centroids.
+  // B's map registered to A's by the objects' tops (their feet and the
+  // CAD's normals there), one per object: a lump's top stands where it stood
+  // whatever each map's object detection made of touching lumps, which
+  // moves objects' centroids by decimetres (the top of an object that joins
+  // lumps is one of theirs); one per object, so that the noise peaks of a
+  // flat top do not outvote the objects.
   SurveyComparison out;
   if (o.register_surveys) {
-    auto as_objects = [](const std::vector<Peak>& peaks, const std::vector<Eigen::Vector3d>& feet,
-                         const std::vector<Eigen::Vector3d>& normals) {
-      std::vector<DetectedObject> points(peaks.size());
-      for (std::size_t k = 0; k < peaks.size(); ++k) {
-        points[k].centroid_m = feet[peaks[k].vertex];
-        points[k].normal_m = normals[peaks[k].vertex];
+    auto tops = [](const std::vector<Peak>& peaks, const std::vector<Eigen::Vector3d>& feet,
+                   const std::vector<Eigen::Vector3d>& normals) {
+      std::vector<DetectedObject> points;
+      for (const Peak& p : peaks) {
+        if (!p.top) continue;
+        DetectedObject t;
+        t.centroid_m = feet[p.vertex];
+        t.normal_m = normals[p.vertex];
+        points.push_back(std::move(t));
       }
       return points;
     };
     SurveyRegistrationOptions ro;
     ro.match_radius = o.peak_spacing;
     ro.max_offset = o.max_misplacement;
-    out.registration =
-        RegisterSurveys(as_objects(peaks_a, feet_a, normals_a), as_objects(peaks_b, own_feet_b, normals_b), ro);
+    out.registration = RegisterSurveys(tops(peaks_a, feet_a, normals_a), tops(peaks_b, own_feet_b, normals_b), ro);
   }
   const Pose& x_ab = out.registration.a_from_b;  // B's map placed on A's
-  const std::vector<Eigen::Vector3d> feet_b = place(model_b, x_ab, "measuring the change on survey B's model", nullptr);
+  const std::vector<Eigen::Vector3d> feet_b =
+      out.registration.registered ? place(model_b, x_ab, "measuring the change on survey B's model", nullptr)
+                                  : own_feet_b;
   const PointIndex b_index(feet_b);
   out.model = model_b;
   std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
@@ -262,8 +320,12 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
 
   // The disc about a peak in which both maps' heights are read: the other
   // map's view of the same top may stand this far off (twice the
-  // registration's centroid residual).
-  const double reach = std::min(o.peak_reach + 2 * out.registration.rms, o.match_radius);
+  // registration's residual). Where the registration was asked for but
+  // neither found a motion nor found the maps in place (fewer than 3 tops in
+  // common either way), they may stand apart by anything: match_radius.
+  const bool in_place = out.registration.registered || !o.register_surveys ||
+                        out.registration.identity_inliers >= SurveyRegistrationOptions{}.min_inliers;
+  const double reach = in_place ? std::min(o.peak_reach + 2 * out.registration.rms, o.match_radius) : o.match_radius;
   out.reach = reach;
 
   // One site per peak of B and per peak of A, a pair of peaks within reach
@@ -299,6 +361,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   struct Site {
     ObjectChange c;
     int obj_a, obj_b;
+    std::size_t order;  // ties: the order the sites were made in
   };
   std::vector<Site> sites;
   auto add_site = [&](int pa, int pb) {
@@ -311,16 +374,19 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     ObjectChange& c = s.c;
     if (s.obj_a >= 0) c.id_a = objects_a[static_cast<std::size_t>(s.obj_a)].id;
     if (s.obj_b >= 0) c.id_b = objects_b[static_cast<std::size_t>(s.obj_b)].id;
-    c.centroid = pb >= 0 ? model_b.vertices[peaks_b[static_cast<std::size_t>(pb)].vertex]
-                         : model_a.vertices[peaks_a[static_cast<std::size_t>(pa)].vertex];
+    // B's peak, else B's highest vertex there where B has an object there
+    // (in B's M, like the rows with a peak of B), else A's peak (in A's M).
+    c.centroid = pb >= 0        ? model_b.vertices[peaks_b[static_cast<std::size_t>(pb)].vertex]
+                 : s.obj_b >= 0 ? model_b.vertices[static_cast<std::size_t>(mb.vertex)]
+                                : model_a.vertices[peaks_a[static_cast<std::size_t>(pa)].vertex];
     c.height_a = ma.h;
     c.height_b = mb.h;
     c.change = c.height_b - c.height_a;
-    if (s.obj_a < 0 && c.height_a < o.change_threshold) {
+    if (s.obj_a < 0 && c.height_a < o.change_threshold && c.height_b >= o.change_threshold) {
       c.kind = ObjectChangeKind::kNew;
       c.height_a = 0;
       c.change = c.height_b;
-    } else if (s.obj_b < 0 && c.height_b < o.change_threshold) {
+    } else if (s.obj_b < 0 && c.height_b < o.change_threshold && c.height_a >= o.change_threshold) {
       c.kind = ObjectChangeKind::kRemoved;
       c.height_b = 0;
       c.change = -c.height_a;
@@ -328,6 +394,7 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
       c.kind = classify(c.change);
       c.from_height_field = s.obj_a < 0 || s.obj_b < 0;
     }
+    s.order = sites.size();
     sites.push_back(std::move(s));
   };
   for (std::size_t b = 0; b < peaks_b.size(); ++b) add_site(pair_of_b[b], static_cast<int>(b));
@@ -344,9 +411,9 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
     if (x.obj_b != y.obj_b) return x.obj_b < y.obj_b;
     if (x.obj_a != y.obj_a) return x.obj_a < y.obj_a;
     if (x.c.kind != y.c.kind) return x.c.kind < y.c.kind;
-    return std::abs(x.c.change) > std::abs(y.c.change) ||
-           (std::abs(x.c.change) == std::abs(y.c.change) &&
-            std::max(x.c.height_a, x.c.height_b) > std::max(y.c.height_a, y.c.height_b));
+    if (std::abs(x.c.change) != std::abs(y.c.change)) return std::abs(x.c.change) > std::abs(y.c.change);
+    const double hx = std::max(x.c.height_a, x.c.height_b), hy = std::max(y.c.height_a, y.c.height_b);
+    return hx != hy ? hx > hy : x.order < y.order;
   });
   for (std::size_t i = 0; i < sites.size(); ++i) {
     const Site& s = sites[i];
@@ -481,7 +548,7 @@ void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_d
     WriteFileAtomic((fs::path(dir) / "objects.csv").string(), csv.text());
     Json root = Json::Object();
     root.Set("format", "hull-compare");
-    root.Set("version", 1);
+    root.Set("version", 2);
     root.Set("vertices", static_cast<std::int64_t>(c.model.num_vertices()));
     root.Set("significant_vertices", static_cast<std::int64_t>(c.significant_vertices));
     const SurveyRegistration& r = c.registration;

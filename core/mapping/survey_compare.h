@@ -21,10 +21,12 @@ struct SurveyCompareOptions {
   // for objects read without their vertex list.
   double match_radius = 0.30;
   // Two local maxima of one map's objects closer than this (m, along the
-  // CAD) are one peak; the registration matches peaks within it.
+  // CAD) are one peak; the registration matches objects' tops within it.
   double peak_spacing = 0.10;
   // Both maps' heights at a peak are their highest within this distance (m)
-  // of it, widened by twice the registration's residual.
+  // of it, widened by twice the registration's residual (at most
+  // match_radius; match_radius itself where the registration neither found
+  // a motion nor the maps in place).
   double peak_reach = 0.05;
   // An object grew (shrank) where a peak's height rose (fell) by at least
   // this much (m); a peak of one map where the other stands lower than this
@@ -50,18 +52,21 @@ const char* ObjectChangeKindName(ObjectChangeKind k);  // "new", "removed", ...
 // local maxima, mapping/survey_compare.cc) is a site, a peak of A and one of
 // B within reach of each other one site; at each site both maps' heights
 // are their highest vertices within reach. A site is new where A has no
-// object there and stands below change_threshold, removed the other way
-// round, else grown / shrunk / unchanged by the difference. Per pair of
+// object there and stands below change_threshold while B stands at least
+// that high, removed the other way round, else grown / shrunk / unchanged
+// by the difference. Per pair of
 // objects (id_a, id_b) and kind the site that changed most is kept, and
 // the unchanged ones are dropped where the pair has a changed one: two maps
 // split and join touching lumps differently, and a joined object's max
 // height stands on one lump only.
 struct ObjectChange {
   ObjectChangeKind kind = ObjectChangeKind::kUnchanged;
-  std::string id_a, id_b;                              // "" where that map has no object there
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // the peak's vertex, in M: B's (A's when only A has it)
-  double height_a = 0, height_b = 0;                   // heights at the site (m); 0 where new / removed
-  double change = 0;                                   // height_b - height_a
+  std::string id_a, id_b;  // "" where that map has no object there
+  // Where: B's peak (or B's highest vertex there when the site is a peak of
+  // A only but B has an object there), else A's peak; in that map's M.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  double height_a = 0, height_b = 0;  // heights at the site (m); 0 where new / removed
+  double change = 0;                  // height_b - height_a
   // One map has no object at the site but stands at least change_threshold
   // high there: the object was there too, below that map's object
   // detection (each map's detection has its thresholds), and is classed by
@@ -79,7 +84,8 @@ struct SurveyComparison {
   std::vector<ObjectChange> objects;
   std::size_t significant_vertices = 0;
   // m: the radius about a peak in which both maps' heights were read
-  // (peak_reach widened by the registration's residual).
+  // (peak_reach widened by the registration's residual; match_radius
+  // without a registration).
   double reach = 0;
   // How B's map was placed on A's before the comparison (identity when not
   // registered). Vertices and centroids keep B's own coordinates.

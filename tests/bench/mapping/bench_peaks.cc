@@ -197,7 +197,8 @@ void ComparePair(const Survey& a, const Survey& b) {
   const hull::SurveyComparison c =
       hull::CompareSurveys(a.sim.cad, ma.model, ma.objects, mb.model, mb.objects, hull::SurveyCompareOptions{});
   std::printf(
-      "\n## compare A B: %.2f s; B registered to A by %d peaks in common (%d without, residual %.3f m); heights "
+      "\n## compare A B: %.2f s; B registered to A by %d objects' tops in common (%d without, residual %.3f m); "
+      "heights "
       "read within %.3f m of each peak\n\n",
       Since(t), c.registration.inliers, c.registration.identity_inliers, c.registration.rms, c.reach);
   std::map<std::string, const hull::TrueObject*> ta, tb;

@@ -24,24 +24,33 @@ struct Lump {
 };
 
 // A fused model over the plane z = 0 (outward -z; 2 x 2 m, vertices
-// `spacing` apart): vertices raised by the lumps (cones of radius 0.3),
-// deviation and a constant sigma.
-TriangleMesh Model(const std::vector<Lump>& lumps, double sigma, double spacing = 0.05) {
+// `spacing` apart): vertices raised by height(x, y), deviation and a
+// constant sigma.
+template <typename Height>
+TriangleMesh HeightModel(Height height, double sigma, double spacing = 0.05) {
   const int n = static_cast<int>(std::lround(2.0 / spacing));
   TriangleMesh m = test::MakeGrid(n, n, spacing);
   for (Face& f : m.faces) std::swap(f[1], f[2]);
   std::vector<double> dev(m.num_vertices(), 0.0);
   for (std::size_t i = 0; i < m.num_vertices(); ++i) {
-    for (const Lump& l : lumps) {
-      const double r = (m.vertices[i].head<2>() - l.c).norm();
-      dev[i] = std::max(dev[i], l.h * std::max(0.0, 1 - r / 0.3));
-    }
+    dev[i] = height(m.vertices[i].head<2>());
     m.vertices[i].z() = -dev[i];
   }
   m.ComputeNormals();
   m.SetScalar("deviation", dev);
   m.SetScalar("sigma", std::vector<double>(m.num_vertices(), sigma));
   return m;
+}
+
+// The lumps as cones of radius 0.3.
+TriangleMesh Model(const std::vector<Lump>& lumps, double sigma, double spacing = 0.05) {
+  return HeightModel(
+      [&](const Eigen::Vector2d& p) {
+        double h = 0;
+        for (const Lump& l : lumps) h = std::max(h, l.h * std::max(0.0, 1 - (p - l.c).norm() / 0.3));
+        return h;
+      },
+      sigma, spacing);
 }
 
 std::vector<DetectedObject> Objects(const std::vector<Lump>& lumps, const char* prefix) {
@@ -288,6 +297,113 @@ TEST(SurveyCompare, ReadsTheObjectsFootprintsAndRefusesBadOnes) {
       EXPECT_NE(what.find(":3"), std::string::npos) << what;  // the line
     }
   }
+}
+
+// Flat tops measured with noise give many local maxima each. Three boxes,
+// nothing moved or changed, 3 mm of noise in each survey: the maps are
+// registered by one top per object, so the noise peaks cannot vote for a
+// motion (they did when every peak voted: 0.17 m and 7 degrees on one
+// box), and no change is reported.
+TEST(SurveyCompare, NoisyFlatTopsNeitherMoveTheMapsNorChange) {
+  TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
+  for (Face& f : cad.faces) std::swap(f[1], f[2]);
+  cad.ComputeNormals();
+  const std::vector<Eigen::Vector2d> centres = {{0.5, 0.5}, {1.4, 0.6}, {0.8, 1.5}};
+  auto boxes = [&](unsigned seed) {
+    return HeightModel(
+        [&, seed](const Eigen::Vector2d& p) {
+          for (const Eigen::Vector2d& c : centres) {
+            if ((p - c).cwiseAbs().maxCoeff() <= 0.25) {
+              // Deterministic noise of +-3 mm per vertex and survey.
+              const double u = std::sin(1e4 * p.x() + 7e3 * p.y() + seed) * 43758.5453;
+              return 0.10 + 0.006 * (u - std::floor(u) - 0.5);
+            }
+          }
+          return 0.0;
+        },
+        0.004);
+  };
+  const TriangleMesh ma = boxes(1), mb = boxes(2);
+  std::vector<DetectedObject> oa, ob;
+  for (std::size_t k = 0; k < centres.size(); ++k) {
+    for (auto* list : {&oa, &ob}) {
+      DetectedObject o;
+      o.id = std::string(list == &oa ? "a" : "b") + std::to_string(k + 1);
+      o.centroid_m = Eigen::Vector3d(centres[k].x(), centres[k].y(), 0);
+      o.area = 0.25;
+      list->push_back(o);
+    }
+  }
+  const SurveyComparison c = CompareSurveys(cad, ma, oa, mb, ob, SurveyCompareOptions{});
+  EXPECT_LT(c.registration.translation, 0.10);
+  EXPECT_LT(c.registration.rotation, 2.0 * M_PI / 180);
+  ASSERT_GE(c.objects.size(), 3u);
+  for (const ObjectChange& x : c.objects) {
+    EXPECT_EQ(x.kind, ObjectChangeKind::kUnchanged) << x.id_a << " " << x.id_b;
+    EXPECT_EQ(x.id_a.substr(1), x.id_b.substr(1));
+    EXPECT_LT(std::abs(x.change), 0.007);
+  }
+  // Per vertex only the noise (|change| <= 6 mm) and the boxes' rims.
+  double worst = 0;
+  for (double v : *c.model.FindScalar("change")) worst = std::max(worst, std::abs(v));
+  EXPECT_LT(worst, 0.02);
+}
+
+// With fewer than three tops in common the maps can be neither registered
+// nor known to be in place: each peak's heights are then read within the
+// match radius, so a lump 0.12 m off in B's map is still unchanged (read
+// within the reach of a registered pair it came out grown and shrunk).
+TEST(SurveyCompare, UnregisteredMapsAreReadWithinTheMatchRadius) {
+  TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
+  for (Face& f : cad.faces) std::swap(f[1], f[2]);
+  cad.ComputeNormals();
+  const std::vector<Lump> a = {{{1.0, 1.0}, 0.15}}, b = {{{1.12, 1.0}, 0.15}};
+  const SurveyComparison c =
+      CompareSurveys(cad, Model(a, 0.004), Objects(a, "a"), Model(b, 0.004), Objects(b, "b"), SurveyCompareOptions{});
+  EXPECT_FALSE(c.registration.registered);
+  EXPECT_DOUBLE_EQ(c.reach, SurveyCompareOptions{}.match_radius);
+  ASSERT_EQ(c.objects.size(), 1u);
+  EXPECT_EQ(c.objects[0].kind, ObjectChangeKind::kUnchanged);
+  EXPECT_EQ(c.objects[0].id_a, "a1");
+  EXPECT_EQ(c.objects[0].id_b, "b1");
+}
+
+// Results written before objects.json listed the footprints: an object's
+// footprint is the region above the change threshold nearest its
+// centroid, whatever its shape. A ring of fouling (its centroid on bare
+// hull) compared with itself is one unchanged row, neither removed nor
+// "missed by A's detection".
+TEST(SurveyCompare, OlderResultsGetTheirFootprintsFromTheHeightField) {
+  TriangleMesh cad = test::MakeGrid(4, 4, 0.5);
+  for (Face& f : cad.faces) std::swap(f[1], f[2]);
+  cad.ComputeNormals();
+  const Eigen::Vector2d centre(1.0, 1.0);
+  const TriangleMesh ring = HeightModel(
+      [&](const Eigen::Vector2d& p) {
+        const double r = (p - centre).norm();
+        return std::abs(r - 0.3) <= 0.06
+                   ? 0.08 * (1 - std::abs(r - 0.3) / 0.06) + 0.002 * std::cos(7 * std::atan2(p.y() - 1, p.x() - 1))
+                   : 0.0;
+      },
+      0.004);
+  DetectedObject listed;  // as this version writes it
+  listed.id = "b1";
+  listed.centroid_m = Eigen::Vector3d(centre.x(), centre.y(), 0);
+  listed.area = 2 * M_PI * 0.3 * 0.06;
+  const std::vector<double>& dev = *ring.FindScalar("deviation");
+  for (std::size_t i = 0; i < ring.num_vertices(); ++i) {
+    if (dev[i] >= 0.03) listed.vertices.push_back(static_cast<int>(i));
+  }
+  DetectedObject old = listed;  // as an earlier version wrote it
+  old.id = "a1";
+  old.vertices.clear();
+  const SurveyComparison c = CompareSurveys(cad, ring, {old}, ring, {listed}, SurveyCompareOptions{});
+  ASSERT_EQ(c.objects.size(), 1u);
+  EXPECT_EQ(c.objects[0].kind, ObjectChangeKind::kUnchanged);
+  EXPECT_EQ(c.objects[0].id_a, "a1");
+  EXPECT_EQ(c.objects[0].id_b, "b1");
+  EXPECT_FALSE(c.objects[0].from_height_field);
+  EXPECT_NEAR(c.objects[0].change, 0.0, 1e-12);
 }
 
 TEST(SurveyCompare, ReportsProgressAndStopsWhenCancelled) {
