@@ -636,10 +636,14 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   ceres::Solver::Summary summary;
   std::vector<char> dropped(s.landmark.size(), 0);
   double initial_cost = -1, solver_seconds = 0;
-  // The E-step by the cavity estimate (cavity_label.h): every landmark the
-  // max-mixture now puts on the model is judged by its estimate without its
-  // own surface factor; those whose cavity estimate is off the model are
-  // labelled off from now on. Returns how many.
+  // The E-step by the cavity estimate (cavity_label.h): every landmark is
+  // judged by its estimate without its own surface factor, under the
+  // component that factor applies now: one on the model whose cavity
+  // estimate is off it is labelled off from now on, and one labelled off
+  // earlier whose estimate (its cavity estimate: sigma0 hardly pulls it) is
+  // back on the model -- a wrong observation removed since, a linearisation
+  // that overshot -- is given back to the max-mixture. Returns how many
+  // labels changed.
   int label_rounds = 0;
   auto cavity_step = [&]() -> std::size_t {
     if (!cavity_labels || label_rounds >= o.label_rounds) return 0;
@@ -647,9 +651,17 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     const Pose x_gM_now = s.ModelPose();
     std::size_t n = 0;
     for (std::size_t li = 0; li < s.landmark.size(); ++li) {
-      if (dropped[li] || cavity_off[li]) continue;
+      if (dropped[li]) continue;
       const Eigen::Vector3d l(s.landmark[li][0], s.landmark[li][1], s.landmark[li][2]);
       const double h = adjust::SurfaceDeviation(index, x_gM_now, l, o.lookup);
+      if (cavity_off[li]) {
+        const adjust::CavityEstimate c = adjust::Cavity(problem, s.landmark[li].data(), surface_block[li], h, o.sigma0);
+        if (!adjust::CavityOffModel(c, o.sigma0, o.sigma1)) {
+          cavity_off[li] = 0;
+          ++n;
+        }
+        continue;
+      }
       if (MaxMixtureLabel(h, o.sigma0, o.sigma1) != 1) continue;
       const adjust::CavityEstimate c = adjust::Cavity(problem, s.landmark[li].data(), surface_block[li], h, o.sigma1);
       if (adjust::CavityOffModel(c, o.sigma0, o.sigma1)) {
@@ -657,7 +669,6 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
         ++n;
       }
     }
-    result.num_labels_off_by_cavity += static_cast<int>(n);
     return n;
   };
   for (int round = 0;; ++round) {
@@ -789,6 +800,7 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
             : DeviationSigma(e.covariance, x_gM.Rotate(index.OrthogonalSignedDistance(x_gM, e.p, o.lookup).normal));
     ++kept_index;
     e.label = cavity_off[i] ? 0 : MaxMixtureLabel(e.deviation, o.sigma0, o.sigma1);
+    result.num_labels_off_by_cavity += cavity_off[i];
     e.observations = s.landmark_views[i];
     result.landmarks.push_back(e);
   }
