@@ -25,6 +25,22 @@ SurfaceModel ParseSurfaceModel(const std::string& name) {
   throw OptionError("model", "unknown surface model '" + name + "' (naive, all-on-surface or max-mixture)");
 }
 
+const char* LabelRuleName(LabelRule r) {
+  switch (r) {
+    case LabelRule::kEstimate:
+      return "estimate";
+    case LabelRule::kCavity:
+      return "cavity";
+  }
+  return "?";
+}
+
+LabelRule ParseLabelRule(const std::string& name) {
+  if (name == "estimate") return LabelRule::kEstimate;
+  if (name == "cavity") return LabelRule::kCavity;
+  throw OptionError("labels", "unknown label rule '" + name + "' (estimate or cavity)");
+}
+
 void AdjustmentOptions::Check() const {
   if (!(sigma1 > 0)) throw OptionError("sigma1", "must be positive");
   if (!(sigma0 > sigma1)) throw OptionError("sigma0", "must be larger than sigma1");
@@ -43,6 +59,7 @@ void AdjustmentOptions::Check() const {
   if (!(gauge_sigma_xy > 0 && gauge_sigma_yaw > 0)) throw OptionError("gauge_sigma", "must be positive");
   if (!(outlier_sigmas > 0)) throw OptionError("outlier_sigmas", "must be positive");
   if (rejection_rounds < 0) throw OptionError("rejection_rounds", "must be >= 0");
+  if (label_rounds < 0) throw OptionError("label_rounds", "must be >= 0");
   if (min_observations < 1) throw OptionError("min_observations", "must be at least 1");
   if (!(max_initial_deviation >= 0) || !std::isfinite(max_initial_deviation)) {
     throw OptionError("max_initial_deviation", "must be >= 0 (0: no limit)");

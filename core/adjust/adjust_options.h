@@ -21,11 +21,36 @@ const char* SurfaceModelName(SurfaceModel m);  // "naive", "all-on-surface", "ma
 // Parses the names above; throws OptionError otherwise.
 SurfaceModel ParseSurfaceModel(const std::string& name);
 
+// How the max-mixture's label of a landmark is decided (the E-step):
+enum class LabelRule {
+  // By the landmark's current estimate of h, where the factor is evaluated
+  // (E- and M-steps merged, as in Ozog et al.). A landmark once on the
+  // model is judged by the estimate its own on-model component has already
+  // pulled toward the hull, so a feature of a low object (h just above the
+  // decision boundary) can be pulled below it and stay there.
+  kEstimate,
+  // As kEstimate, and after each solve every landmark on the model is judged
+  // again by its cavity estimate: its h with its own surface factor taken
+  // out, h_c = h (1 + sigma_c^2 / sigma1^2), sigma_c^2 = n^T C n with C the
+  // covariance its other factors give it (poses held fixed) and n the
+  // direction of h. A landmark whose cavity estimate is more likely off the
+  // model is labelled off for the rest of the adjustment, and the problem
+  // is solved again (docs/adjustment.md, "Labels by the cavity estimate").
+  kCavity,
+};
+const char* LabelRuleName(LabelRule r);  // "estimate", "cavity"
+// Parses the names above; throws OptionError("labels") otherwise.
+LabelRule ParseLabelRule(const std::string& name);
+
 struct AdjustmentOptions {
   SurfaceModel model = SurfaceModel::kMaxMixture;
   // Surface-constraint sigmas (m): off the model (lambda = 0) and on it (lambda = 1).
   double sigma0 = 1.0;
   double sigma1 = 0.02;
+  // The E-step of the max-mixture (above), and how many times at most the
+  // cavity labels may send the problem back to the solver.
+  LabelRule labels = LabelRule::kCavity;
+  int label_rounds = 3;
   // How h(x_gM, l) finds its face: the exact closest point (default) or the
   // paper's nearest vertex and any adjacent face.
   SurfaceLookup lookup = SurfaceLookup::kClosestFace;

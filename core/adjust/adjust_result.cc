@@ -54,6 +54,7 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   Json opt = Json::Object();
   opt.Set("sigma0", r.options.sigma0);
   opt.Set("sigma1", r.options.sigma1);
+  opt.Set("labels", LabelRuleName(r.options.labels));
   opt.Set("lookup", r.options.lookup == SurfaceLookup::kClosestFace ? "closest-face" : "nearest-vertex");
   opt.Set("huber_sigmas", r.options.huber_sigmas);
   opt.Set("estimate_servo", r.options.estimate_servo);
@@ -74,6 +75,7 @@ void WriteAdjustmentResult(const AdjustmentResult& r, const std::string& dir) {
   sum.Set("landmarks_skipped", r.num_landmarks_skipped);
   sum.Set("landmarks_off_model", r.num_landmarks_off_model);
   sum.Set("observations_rejected", r.observations_rejected);
+  sum.Set("labels_off_by_cavity", r.num_labels_off_by_cavity);
   sum.Set("fraction_on_surface", r.FractionOnSurface());
   sum.Set("decision_boundary", r.options.DecisionBoundary());
   sum.Set("covariance", CovarianceMethodName(r.covariance_method));
@@ -155,6 +157,15 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
   const JsonReader opt = root.Object("options");
   r.options.sigma0 = opt.Number("sigma0");
   r.options.sigma1 = opt.Number("sigma1");
+  if (auto labels = opt.OptionalString("labels")) {
+    try {
+      r.options.labels = ParseLabelRule(*labels);
+    } catch (const OptionError& e) {
+      opt.Fail(opt.Required("labels"), "labels", e.what());
+    }
+  } else {
+    r.options.labels = LabelRule::kEstimate;  // older results: the label by the estimate
+  }
   r.options.lookup =
       opt.String("lookup") == "nearest-vertex" ? SurfaceLookup::kNearestVertex : SurfaceLookup::kClosestFace;
   r.options.huber_sigmas = opt.Number("huber_sigmas");
@@ -171,6 +182,7 @@ AdjustmentResult ReadAdjustmentResult(const std::string& dir) {
   r.num_residual_blocks = static_cast<int>(sum.Integer("residual_blocks"));
   r.num_landmarks_skipped = static_cast<int>(sum.Integer("landmarks_skipped"));
   r.num_landmarks_off_model = static_cast<int>(sum.NumberOr("landmarks_off_model", 0));  // older results: none
+  r.num_labels_off_by_cavity = static_cast<int>(sum.NumberOr("labels_off_by_cavity", 0));
   if (auto m = sum.OptionalString("covariance")) {
     try {
       r.covariance_method = ParseCovarianceMethod(*m);

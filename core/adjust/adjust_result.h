@@ -73,6 +73,10 @@ struct AdjustmentResult {
   // Of those skipped: triangulated farther than options.max_initial_deviation from the prior mesh.
   int num_landmarks_off_model = 0;
   int observations_rejected = 0;  // reprojection outliers removed (wrong matches)
+  // Landmarks labelled off the model at the end by their cavity estimate
+  // (their estimate lay on it when the E-step judged them; LabelRule::kCavity,
+  // cavity_label.h).
+  int num_labels_off_by_cavity = 0;
   // How the landmark covariances were computed (a fallback says why) and how long it took.
   CovarianceMethod covariance_method = CovarianceMethod::kNone;
   std::string covariance_note;

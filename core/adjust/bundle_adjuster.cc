@@ -18,6 +18,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "adjust/cavity_label.h"
 #include "adjust/factors/dvl_raycast_factor.h"
 #include "adjust/factors/odometry_factor.h"
 #include "adjust/factors/pose_prior_factor.h"
@@ -89,11 +90,14 @@ class State {
 };
 
 // Fraction of landmarks whose max-mixture label is 1 at the current state.
-double FractionOnSurface(const State& s, const MeshIndex& index, const AdjustmentOptions& o, std::vector<int>* hints) {
+// off: per landmark, labelled off by its cavity estimate (LabelRule::kCavity).
+double FractionOnSurface(const State& s, const MeshIndex& index, const AdjustmentOptions& o, std::vector<int>* hints,
+                         const std::vector<char>& off) {
   if (s.landmark.empty()) return 0;
   const Pose x_gM = s.ModelPose();
   int on = 0;
   for (std::size_t i = 0; i < s.landmark.size(); ++i) {
+    if (off[i]) continue;
     const Eigen::Vector3d l(s.landmark[i][0], s.landmark[i][1], s.landmark[i][2]);
     on += MaxMixtureLabel(adjust::SurfaceDeviation(index, x_gM, l, o.lookup, &(*hints)[i]), o.sigma0, o.sigma1);
   }
@@ -139,11 +143,12 @@ namespace {
 
 class Observer : public ceres::IterationCallback {
  public:
-  Observer(const State& s, const MeshIndex& index, const AdjustmentOptions& o, Progress& progress,
-           std::vector<IterationRecord>& log, std::size_t num_residuals)
+  Observer(const State& s, const MeshIndex& index, const AdjustmentOptions& o, const std::vector<char>& off,
+           Progress& progress, std::vector<IterationRecord>& log, std::size_t num_residuals)
       : s_(s),
         index_(index),
         o_(o),
+        off_(off),
         progress_(progress),
         log_(log),
         hints_(s.landmark.size(), -1),
@@ -171,7 +176,7 @@ class Observer : public ceres::IterationCallback {
     r.iteration = offset_ + it.iteration;
     r.cost = cost;
     r.seconds = it.cumulative_time_in_seconds;
-    r.fraction_on_surface = FractionOnSurface(s_, index_, o_, &hints_);
+    r.fraction_on_surface = FractionOnSurface(s_, index_, o_, &hints_, off_);
     log_.push_back(r);
     char msg[160];
     std::snprintf(msg, sizeof(msg), "%s adjustment: iteration %d, cost %.6g, lambda=1 for %.1f %%",
@@ -185,6 +190,7 @@ class Observer : public ceres::IterationCallback {
   const State& s_;
   const MeshIndex& index_;
   const AdjustmentOptions& o_;
+  const std::vector<char>& off_;
   Progress& progress_;
   std::vector<IterationRecord>& log_;
   std::vector<int> hints_;
@@ -534,11 +540,17 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   }
   // Surface constraints.
   std::vector<ceres::ResidualBlockId> surface_block(s.landmark.size(), nullptr);
+  // Per landmark: labelled off the model by its cavity estimate (the E-step
+  // between solves, LabelRule::kCavity); the factors read it, so it is never
+  // resized.
+  std::vector<char> cavity_off(s.landmark.size(), 0);
+  const bool cavity_labels = o.model == SurfaceModel::kMaxMixture && o.labels == LabelRule::kCavity;
   if (o.model != SurfaceModel::kNaive) {
     for (std::size_t li = 0; li < s.landmark.size(); ++li) {
-      surface_block[li] = problem.AddResidualBlock(
-          adjust::SurfaceFactor::Create(&index, &s.model_offset, o.lookup, o.model, o.sigma0, o.sigma1), nullptr,
-          s.model.data(), s.landmark[li].data());
+      surface_block[li] =
+          problem.AddResidualBlock(adjust::SurfaceFactor::Create(&index, &s.model_offset, o.lookup, o.model, o.sigma0,
+                                                                 o.sigma1, cavity_labels ? &cavity_off[li] : nullptr),
+                                   nullptr, s.model.data(), s.landmark[li].data());
       label(surface_block[li], ResidualLabel::kSurface, s.landmark_id[li]);
     }
   }
@@ -617,12 +629,48 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   ordering->AddElementToGroup(s.extrinsic.data(), 1);
   ordering->AddElementToGroup(s.model.data(), 1);
   so.linear_solver_ordering = ordering;
-  Observer observer(s, index, o, progress, result.iterations, static_cast<std::size_t>(problem.NumResiduals()));
+  Observer observer(s, index, o, cavity_off, progress, result.iterations,
+                    static_cast<std::size_t>(problem.NumResiduals()));
   so.callbacks.push_back(&observer);
   progress.Update(0.1, std::string(SurfaceModelName(o.model)) + " adjustment: solving");
   ceres::Solver::Summary summary;
   std::vector<char> dropped(s.landmark.size(), 0);
   double initial_cost = -1, solver_seconds = 0;
+  // The E-step by the cavity estimate (cavity_label.h): every landmark is
+  // judged by its estimate without its own surface factor, under the
+  // component that factor applies now: one on the model whose cavity
+  // estimate is off it is labelled off from now on, and one labelled off
+  // earlier whose estimate (its cavity estimate: sigma0 hardly pulls it) is
+  // back on the model -- a wrong observation removed since, a linearisation
+  // that overshot -- is given back to the max-mixture. Returns how many
+  // labels changed.
+  int label_rounds = 0;
+  auto cavity_step = [&]() -> std::size_t {
+    if (!cavity_labels || label_rounds >= o.label_rounds) return 0;
+    ++label_rounds;
+    const Pose x_gM_now = s.ModelPose();
+    std::size_t n = 0;
+    for (std::size_t li = 0; li < s.landmark.size(); ++li) {
+      if (dropped[li]) continue;
+      const Eigen::Vector3d l(s.landmark[li][0], s.landmark[li][1], s.landmark[li][2]);
+      const double h = adjust::SurfaceDeviation(index, x_gM_now, l, o.lookup);
+      if (cavity_off[li]) {
+        const adjust::CavityEstimate c = adjust::Cavity(problem, s.landmark[li].data(), surface_block[li], h, o.sigma0);
+        if (!adjust::CavityOffModel(c, o.sigma0, o.sigma1)) {
+          cavity_off[li] = 0;
+          ++n;
+        }
+        continue;
+      }
+      if (MaxMixtureLabel(h, o.sigma0, o.sigma1) != 1) continue;
+      const adjust::CavityEstimate c = adjust::Cavity(problem, s.landmark[li].data(), surface_block[li], h, o.sigma1);
+      if (adjust::CavityOffModel(c, o.sigma0, o.sigma1)) {
+        cavity_off[li] = 1;
+        ++n;
+      }
+    }
+    return n;
+  };
   for (int round = 0;; ++round) {
     observer.set_iteration_offset(result.iterations.empty() ? 0 : result.iterations.back().iteration);
     ceres::Solve(so, &problem, &summary);
@@ -638,7 +686,13 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     }
     if (initial_cost < 0) initial_cost = summary.initial_cost;
     solver_seconds += summary.total_time_in_seconds;
-    if (round >= o.rejection_rounds) break;
+    const std::size_t relabelled = cavity_step();
+    if (round >= o.rejection_rounds) {
+      if (relabelled == 0) break;
+      progress.Update(observer.fraction(),
+                      std::to_string(relabelled) + " landmarks off the model by their cavity estimate; solving again");
+      continue;
+    }
     // Remove observations beyond outlier_sigmas (the 2-D error in either camera).
     const double limit2 = o.outlier_sigmas * o.outlier_sigmas;
     std::size_t removed = 0;
@@ -693,9 +747,10 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
     result.observations_rejected += static_cast<int>(removed);
     result.num_landmarks_skipped += static_cast<int>(lost);
     for (std::size_t li = 0; li < s.landmark.size(); ++li) s.landmark_views[li] = static_cast<int>(views[li].size());
-    if (removed == 0) break;
+    if (removed == 0 && relabelled == 0) break;
     progress.Update(observer.fraction(), "removed " + std::to_string(removed) + " outlying observations and " +
-                                             std::to_string(lost) + " landmarks; solving again");
+                                             std::to_string(lost) + " landmarks, " + std::to_string(relabelled) +
+                                             " landmarks off the model by their cavity estimate; solving again");
   }
 
   // ---- results ------------------------------------------------------------------------
@@ -744,7 +799,8 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
             ? cov.sigma_h[kept_index]
             : DeviationSigma(e.covariance, x_gM.Rotate(index.OrthogonalSignedDistance(x_gM, e.p, o.lookup).normal));
     ++kept_index;
-    e.label = MaxMixtureLabel(e.deviation, o.sigma0, o.sigma1);
+    e.label = cavity_off[i] ? 0 : MaxMixtureLabel(e.deviation, o.sigma0, o.sigma1);
+    result.num_labels_off_by_cavity += cavity_off[i];
     e.observations = s.landmark_views[i];
     result.landmarks.push_back(e);
   }

@@ -31,10 +31,11 @@ double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 struct ShapeKey {
   double tau, alpha, eps, grow_height;
   int min_points;
-  bool keep_peaks;  // AdmitPeakPoints
+  bool keep_peaks;         // AdmitPeakPoints
+  bool seed_across_views;  // SeededLandmarks
   bool operator==(const ShapeKey& o) const {
     return tau == o.tau && alpha == o.alpha && eps == o.eps && grow_height == o.grow_height &&
-           min_points == o.min_points && keep_peaks == o.keep_peaks;
+           min_points == o.min_points && keep_peaks == o.keep_peaks && seed_across_views == o.seed_across_views;
   }
 };
 
@@ -131,7 +132,13 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   // Algorithm 1 per keyframe.
   auto t = Clock::now();
   progress.Update(0.0, "detecting shapes (Algorithm 1)");
-  const ShapeKey sk{o.tau, o.alpha, o.dbscan_eps, o.shape_grow_height, o.dbscan_min_points, o.fusion_keep_peaks};
+  const ShapeKey sk{o.tau,
+                    o.alpha,
+                    o.dbscan_eps,
+                    o.shape_grow_height,
+                    o.dbscan_min_points,
+                    o.fusion_keep_peaks,
+                    o.shape_seed_across_views};
   if (!shape_key || !(*shape_key == sk)) {
     shape_key.reset();
     shapes = DetectAllShapes(input, o, progress);

@@ -34,6 +34,11 @@ struct MappingOptions {
   // >= tau turns it off (the paper's Algorithm 1, each feature cut at tau);
   // at tau = 0 it has no effect. docs/mapping.md, "Algorithm 1".
   double shape_grow_height = 0.015;
+  // With hysteresis: a keyframe's cluster is also kept when it holds a
+  // landmark that a seeded cluster of another keyframe holds (the seed is a
+  // property of the structure, not of the views that happened to see the
+  // feature above tau). docs/mapping.md, "Seeds across views".
+  bool shape_seed_across_views = true;
 
   // ---- Algorithm 2: fusion into the mesh -------------------------------------
   // Only model vertices within this distance of the top camera are fused

@@ -66,9 +66,23 @@ void KeepSeededClusters(const std::vector<char>& seed, int min_seeds, DbscanResu
   db.num_clusters = kept;
 }
 
-KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o) {
+namespace {
+
+// Lines 4-11 of Algorithm 1 for one keyframe: its points (every observed
+// landmark in front of the camera, into out.points), those clustered (x, y,
+// |d|) with their index into out.points and whether each is a seed (above
+// tau), and DBSCAN's clusters (peak points admitted), before the
+// hysteresis drops unseeded clusters.
+struct KeyframeClusters {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> point_of;  // -> out.points
+  std::vector<char> seed;     // |d| > tau
+  DbscanResult db;
+};
+
+KeyframeClusters ClusterKeyframe(const MappingInput& input, int keyframe, const MappingOptions& o,
+                                 KeyframeShapes& out) {
   const MappingKeyframe& kf = input.keyframes[static_cast<std::size_t>(keyframe)];
-  KeyframeShapes out;
   out.keyframe = keyframe;
   out.id = kf.id;
   const Pose cT_g = kf.x_g_cT.Inverse();
@@ -76,9 +90,7 @@ KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const Mappi
   // seeds) and, with hysteresis (shape_grow_height < tau), those above the
   // lower level that a cluster may grow through.
   const double low = std::min(o.tau, o.shape_grow_height);
-  std::vector<Eigen::Vector3d> cluster_points;
-  std::vector<int> cluster_point_of;  // -> out.points
-  std::vector<char> seed;             // per cluster point: |d| > tau
+  KeyframeClusters c;
   for (const int li : kf.landmarks) {
     const MappingLandmark& l = input.landmarks[static_cast<std::size_t>(li)];
     ShapePoint p;
@@ -88,16 +100,68 @@ KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const Mappi
     p.pixel = input.camera.top.Project(p.p_c);
     p.deviation = l.deviation;
     if (std::abs(l.deviation) > low) {
-      cluster_points.emplace_back(p.p_c.x(), p.p_c.y(), std::abs(l.deviation));
-      cluster_point_of.push_back(static_cast<int>(out.points.size()));
-      seed.push_back(std::abs(l.deviation) > o.tau);
+      c.points.emplace_back(p.p_c.x(), p.p_c.y(), std::abs(l.deviation));
+      c.point_of.push_back(static_cast<int>(out.points.size()));
+      c.seed.push_back(std::abs(l.deviation) > o.tau);
     }
     out.points.push_back(p);
   }
   // Line 11: DBSCAN.
-  DbscanResult db = Dbscan(cluster_points, o.dbscan_eps, o.dbscan_min_points);
-  if (o.fusion_keep_peaks) AdmitPeakPoints(cluster_points, o.dbscan_eps, db);
-  if (low < o.tau) KeepSeededClusters(seed, 1, db);
+  c.db = Dbscan(c.points, o.dbscan_eps, o.dbscan_min_points);
+  if (o.fusion_keep_peaks) AdmitPeakPoints(c.points, o.dbscan_eps, c.db);
+  return c;
+}
+
+bool Hysteresis(const MappingOptions& o) { return std::min(o.tau, o.shape_grow_height) < o.tau; }
+
+}  // namespace
+
+std::vector<char> SeededLandmarks(const MappingInput& input, const MappingOptions& o) {
+  std::vector<char> seeded(input.landmarks.size(), 0);
+  if (!Hysteresis(o)) return seeded;
+  const int n = static_cast<int>(input.keyframes.size());
+  std::vector<std::vector<int>> per_keyframe(static_cast<std::size_t>(n));
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
+    for (int k = r.begin(); k != r.end(); ++k) {
+      KeyframeShapes out;
+      const KeyframeClusters c = ClusterKeyframe(input, k, o, out);
+      std::vector<char> has_seed(static_cast<std::size_t>(c.db.num_clusters), 0);
+      for (std::size_t i = 0; i < c.seed.size(); ++i) {
+        if (c.db.labels[i] >= 0 && c.seed[i]) has_seed[static_cast<std::size_t>(c.db.labels[i])] = 1;
+      }
+      for (std::size_t i = 0; i < c.seed.size(); ++i) {
+        if (c.db.labels[i] >= 0 && has_seed[static_cast<std::size_t>(c.db.labels[i])]) {
+          per_keyframe[static_cast<std::size_t>(k)].push_back(
+              out.points[static_cast<std::size_t>(c.point_of[i])].landmark);
+        }
+      }
+    }
+  });
+  for (const std::vector<int>& list : per_keyframe) {
+    for (const int li : list) seeded[static_cast<std::size_t>(li)] = 1;
+  }
+  return seeded;
+}
+
+KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o,
+                            const std::vector<char>* seeded) {
+  KeyframeShapes out;
+  KeyframeClusters c = ClusterKeyframe(input, keyframe, o, out);
+  DbscanResult& db = c.db;
+  const std::vector<char>& seed = c.seed;
+  const std::vector<int>& cluster_point_of = c.point_of;
+  if (Hysteresis(o)) {
+    // A cluster is kept when it holds a seed, or (seeded) a landmark that
+    // another keyframe's seeded cluster holds.
+    std::vector<char> keeps = seed;
+    if (seeded) {
+      for (std::size_t i = 0; i < keeps.size(); ++i) {
+        const int li = out.points[static_cast<std::size_t>(cluster_point_of[i])].landmark;
+        if ((*seeded)[static_cast<std::size_t>(li)]) keeps[i] = 1;
+      }
+    }
+    KeepSeededClusters(keeps, 1, db);
+  }
   std::vector<std::vector<int>> members(static_cast<std::size_t>(db.num_clusters));
   for (std::size_t i = 0; i < db.labels.size(); ++i) {
     const int c = db.labels[i];
@@ -151,13 +215,18 @@ std::vector<KeyframeShapes> DetectAllShapes(const MappingInput& input, const Map
                                             Progress& progress) {
   const int n = static_cast<int>(input.keyframes.size());
   std::vector<KeyframeShapes> out(static_cast<std::size_t>(n));
+  const std::vector<char> seeded =
+      options.shape_seed_across_views ? SeededLandmarks(input, options) : std::vector<char>();
+  const std::vector<char>* seeded_ptr = options.shape_seed_across_views ? &seeded : nullptr;
+  progress.ThrowIfCancelled();
   std::atomic<bool> cancelled{false};
   tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
     if (cancelled.load(std::memory_order_relaxed) || progress.Cancelled()) {
       cancelled = true;
       return;
     }
-    for (int k = r.begin(); k != r.end(); ++k) out[static_cast<std::size_t>(k)] = DetectShapes(input, k, options);
+    for (int k = r.begin(); k != r.end(); ++k)
+      out[static_cast<std::size_t>(k)] = DetectShapes(input, k, options, seeded_ptr);
   });
   progress.ThrowIfCancelled();
   if (cancelled) throw Cancelled();

@@ -69,9 +69,17 @@ void AdmitPeakPoints(const std::vector<Eigen::Vector3d>& points, double eps, Dbs
 // points become noise); the rest are renumbered 0 .. in their order.
 void KeepSeededClusters(const std::vector<char>& seed, int min_seeds, DbscanResult& db);
 
+// The landmarks (per index into input.landmarks: 1) that some keyframe's
+// DBSCAN cluster holding a seed holds (with hysteresis; all 0 without):
+// the features Algorithm 1 connects to a feature above tau in at least one
+// view (MappingOptions::shape_seed_across_views).
+std::vector<char> SeededLandmarks(const MappingInput& input, const MappingOptions& options);
+
 // Algorithm 1 for one keyframe (index into input.keyframes). options.Check()
-// is the caller's business.
-KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& options);
+// is the caller's business. With hysteresis, a cluster is kept when it holds
+// a seed or, with `seeded` (SeededLandmarks), a landmark seeded in any view.
+KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& options,
+                            const std::vector<char>* seeded = nullptr);
 
 // Algorithm 1 for every keyframe, in parallel (the result does not depend on
 // the number of threads). Throws hull::Cancelled when progress asks.

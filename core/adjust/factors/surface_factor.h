@@ -13,6 +13,9 @@
 //     normalisation stays in the cost as a constant second residual
 //     sqrt(2 ln(sigma / sigma_min)) (libRSF's MaxMixture), so the cost is a
 //     sum of squares and the chosen label is the true maximum.
+//     With `off_model` (LabelRule::kCavity) pointing at a nonzero flag, the
+//     label is 0 whatever h: the E-step between solves found the landmark's
+//     cavity estimate off the model (cavity_label.h).
 #pragma once
 
 #include <ceres/autodiff_cost_function.h>
@@ -54,14 +57,15 @@ class SurfaceFactor {
  public:
   // model_offset: x_CM, with the model pose block holding x_gC (x_gM = x_gC (+) x_CM).
   SurfaceFactor(const MeshIndex* mesh, const Pose* model_offset, SurfaceLookup lookup, SurfaceModel model,
-                double sigma0, double sigma1)
+                double sigma0, double sigma1, const char* off_model = nullptr)
       : mesh_(mesh),
         offset_(model_offset),
         lookup_(lookup),
         max_mixture_(model == SurfaceModel::kMaxMixture),
         sigma0_(sigma0),
         sigma1_(sigma1),
-        offset0_(std::sqrt(2.0 * std::log(sigma0 / sigma1))) {}
+        offset0_(std::sqrt(2.0 * std::log(sigma0 / sigma1))),
+        off_model_(off_model) {}
 
   template <typename T>
   bool operator()(const T* x_gC, const T* landmark, T* residual) const {
@@ -72,7 +76,8 @@ class SurfaceFactor {
     hint_.store(sd.face, std::memory_order_relaxed);
     const Eigen::Vector3d dir = SurfaceDirection(sd, ScalarOf(lM));
     const T h = dir.cast<T>().dot(lM - sd.point.cast<T>());
-    if (!max_mixture_ || MaxMixtureLabel(ScalarOf(h), sigma0_, sigma1_) == 1) {
+    const bool forced_off = max_mixture_ && off_model_ && *off_model_;
+    if (!max_mixture_ || (!forced_off && MaxMixtureLabel(ScalarOf(h), sigma0_, sigma1_) == 1)) {
       residual[0] = h / T(sigma1_);
       residual[1] = T(0);
     } else {
@@ -83,9 +88,10 @@ class SurfaceFactor {
   }
 
   static ceres::CostFunction* Create(const MeshIndex* mesh, const Pose* model_offset, SurfaceLookup lookup,
-                                     SurfaceModel model, double sigma0, double sigma1) {
+                                     SurfaceModel model, double sigma0, double sigma1,
+                                     const char* off_model = nullptr) {
     return new ceres::AutoDiffCostFunction<SurfaceFactor, 2, kPoseSize, 3>(
-        new SurfaceFactor(mesh, model_offset, lookup, model, sigma0, sigma1));
+        new SurfaceFactor(mesh, model_offset, lookup, model, sigma0, sigma1, off_model));
   }
 
  private:
@@ -94,6 +100,7 @@ class SurfaceFactor {
   const SurfaceLookup lookup_;
   const bool max_mixture_;
   const double sigma0_, sigma1_, offset0_;
+  const char* off_model_;  // null: the label by h alone
   mutable std::atomic<int> hint_{-1};
 };
 

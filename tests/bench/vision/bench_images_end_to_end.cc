@@ -74,6 +74,9 @@ struct ObjectScore {
 struct TraceRequest {
   std::string object;  // empty: none
   double above = 0.01;
+  // Algorithm 1's parameters and results, for the seeds' clusters.
+  double tau = 0.06, eps = 0.10, grow_height = 0.015;
+  const std::vector<KeyframeShapes>* shapes = nullptr;
 };
 
 // The landmarks over one true object that stand more than `above` over its
@@ -115,6 +118,36 @@ void TraceObject(const PipelineInputs& in, const MappingInput& input, const Obje
     for (std::size_t i = 0; i < std::min<std::size_t>(8, on.size()); ++i)
       std::printf(" %.3f/%.3f", on[i].first, adjusted_h[on[i].second]);
     std::printf("\n");
+    // Its features above tau (the seeds of Algorithm 1): per keyframe that
+    // saw one, the cluster it fell in and its neighbours in DBSCAN's metric.
+    for (const auto& [true_h, id] : on) {
+      if (!(adjusted_h[id] > req.tau)) continue;
+      std::printf("  seed landmark %lld (true h %.3f, adjusted %.3f):\n", static_cast<long long>(id), true_h,
+                  adjusted_h[id]);
+      for (const KeyframeShapes& ks : *req.shapes) {
+        const ShapePoint* seed = nullptr;
+        for (const ShapePoint& p : ks.points)
+          if (input.landmarks[static_cast<std::size_t>(p.landmark)].id == id) seed = &p;
+        if (!seed) continue;
+        int above_low = 0, above_tau = 0, clustered = 0;
+        for (const ShapePoint& p : ks.points) {
+          const Eigen::Vector3d a(seed->p_c.x(), seed->p_c.y(), std::abs(seed->deviation));
+          const Eigen::Vector3d q(p.p_c.x(), p.p_c.y(), std::abs(p.deviation));
+          if (&p == seed || (a - q).norm() > req.eps) continue;
+          above_low += std::abs(p.deviation) > req.grow_height;
+          above_tau += std::abs(p.deviation) > req.tau;
+          clustered += p.cluster >= 0;
+        }
+        int in_shape = 0;
+        for (const DetectedShape& s : ks.shapes)
+          for (const int pi : s.points) in_shape += &ks.points[static_cast<std::size_t>(pi)] == seed;
+        std::printf(
+            "    kf %5lld: cluster %d%s; within eps: %d above the grow level, %d above tau, %d clustered; %zu "
+            "observed\n",
+            static_cast<long long>(ks.id), seed->cluster, in_shape ? " (a shape vertex)" : "", above_low, above_tau,
+            clustered, ks.points.size());
+      }
+    }
   }
   // The region's highest landmarks, per keyframe that observed them: their
   // label in Algorithm 1 (cluster, noise, below tau), the shape that holds
@@ -287,10 +320,15 @@ ObjectScore ScoreObjects(const PipelineInputs& in, const PipelineResult& r, cons
   const std::vector<ObjectHeightCheck> checks = CheckObjectHeights(
       m.model, m.objects, input, model_to_true, sim.bundle.truth->objects, sim.object_meshes, cad, &m.keyframes);
   if (!trace.object.empty() && in.bundle.features_from_images) {
+    TraceRequest req = trace;
+    req.tau = r.mapping->options.tau;
+    req.eps = r.mapping->options.dbscan_eps;
+    req.grow_height = r.mapping->options.shape_grow_height;
+    req.shapes = &m.keyframes;
     for (const ObjectHeightCheck& c : checks) {
       if (c.id != trace.object) continue;
       for (const TrueObject& o : sim.bundle.truth->objects)
-        if (o.id == c.id) TraceObject(in, input, c, o, m.model, model_to_true, m.keyframes, m.options, trace);
+        if (o.id == c.id) TraceObject(in, input, c, o, m.model, model_to_true, m.keyframes, m.options, req);
     }
   }
   std::printf("%s", ObjectHeightTable(checks, min_height, 0.01).c_str());

@@ -219,6 +219,64 @@ TEST(ShapeDetection, HysteresisShapesANarrowLumpOverItsFootprintAndALowOneNot) {
   EXPECT_EQ(DetectShapes(in, 0, on).shapes.size(), 2u);
 }
 
+TEST(ShapeDetection, ASeedSeenInOneViewKeepsTheLumpsClusterInAnother) {
+  // A second keyframe at the same place sees the narrow lump's flanks but
+  // not its features above tau (the seeds): on its own, its cluster there
+  // has no seed and forms no shape.
+  MappingInput in = TwoLumps();
+  MappingOptions o;
+  o.tau = 0.06;
+  ASSERT_LT(o.shape_grow_height, o.tau);
+  MappingKeyframe second = in.keyframes[0];
+  second.id = 2;
+  second.landmarks.clear();
+  int seeds = 0;
+  for (const int li : in.keyframes[0].landmarks) {
+    if (in.landmarks[static_cast<std::size_t>(li)].deviation > o.tau) {
+      ++seeds;
+      continue;
+    }
+    second.landmarks.push_back(li);
+  }
+  ASSERT_GT(seeds, 0);
+  in.keyframes.push_back(second);
+  const auto near = [&](const Eigen::Vector3d& p, double x) {
+    return std::abs(p.x() - x) < 0.15 && std::abs(p.y()) < 0.15;
+  };
+
+  const std::vector<char> seeded = SeededLandmarks(in, o);
+  // The seeded landmarks: the narrow lump's cluster in the first view, not
+  // the low lump's nor the hull's.
+  int on_narrow = 0;
+  for (std::size_t li = 0; li < seeded.size(); ++li) {
+    if (!seeded[li]) continue;
+    EXPECT_TRUE(near(in.landmarks[li].p_g, -0.3)) << li;
+    on_narrow += in.landmarks[li].deviation <= o.tau;
+  }
+  EXPECT_GT(on_narrow, 4);  // its flanks below tau, which the second view sees
+
+  EXPECT_TRUE(DetectShapes(in, 1, o).shapes.empty());  // the view alone
+  const KeyframeShapes with = DetectShapes(in, 1, o, &seeded);
+  ASSERT_EQ(with.shapes.size(), 1u);
+  for (const Eigen::Vector3d& v : with.shapes[0].vertices_g) {
+    EXPECT_TRUE(near(v, -0.3));
+  }
+  // The low lump has no seed in any view: no shape, either keyframe.
+  for (const int k : {0, 1}) {
+    for (const DetectedShape& s : DetectShapes(in, k, o, &seeded).shapes) {
+      for (const Eigen::Vector3d& v : s.vertices_g) EXPECT_FALSE(near(v, 0.3)) << k;
+    }
+  }
+  // DetectAllShapes applies it by default, and not when turned off.
+  NullProgress quiet;
+  EXPECT_EQ(DetectAllShapes(in, o, quiet)[1].shapes.size(), 1u);
+  o.shape_seed_across_views = false;
+  EXPECT_TRUE(DetectAllShapes(in, o, quiet)[1].shapes.empty());
+  // Without hysteresis nothing is seeded.
+  o.shape_grow_height = o.tau;
+  for (const char c : SeededLandmarks(in, o)) EXPECT_EQ(c, 0);
+}
+
 // ---- alpha shapes -----------------------------------------------------------------
 
 double Area(const std::vector<Eigen::Vector2d>& p, const std::vector<Face>& tris) {
