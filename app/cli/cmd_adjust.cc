@@ -23,6 +23,10 @@ options:
   --model NAME         max-mixture (default), all-on-surface or naive
   --sigma0 M           off-model sigma (default 1.0)
   --sigma1 M           on-model sigma (default 0.02)
+  --labels RULE        the max-mixture's E-step: cavity (default; a landmark
+                       on the model is judged again by its estimate without
+                       its own surface factor, docs/adjustment.md) or
+                       estimate (the paper's: by its current estimate)
   --lookup NAME        closest-face (default) or nearest-vertex (the paper's)
   --max-iterations N   Levenberg-Marquardt iterations (default 100)
   --threads N          0: all cores (default)
@@ -59,9 +63,10 @@ int RunAdjust(const CommandArgs& argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"mesh", "mesh-scale", "model", "sigma0", "sigma1", "lookup", "max-iterations", "function-tolerance",
-               "linear-solver", "covariance", "threads", "no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate",
-               "verbose", "quiet", "out"});
+  a.AllowOnly(
+      {"mesh",           "mesh-scale",         "model",         "sigma0",     "sigma1",  "labels",   "lookup",
+       "max-iterations", "function-tolerance", "linear-solver", "covariance", "threads", "no-servo", "no-extrinsic",
+       "no-dvl",         "no-align",           "evaluate",      "verbose",    "quiet",   "out"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
@@ -70,6 +75,7 @@ int RunAdjust(const CommandArgs& argv) {
   o.model = ParseSurfaceModel(a.Get("model", "max-mixture"));
   o.sigma0 = a.GetDouble("sigma0", o.sigma0);
   o.sigma1 = a.GetDouble("sigma1", o.sigma1);
+  o.labels = ParseLabelRule(a.Get("labels", LabelRuleName(o.labels)));
   const std::string lookup = a.Get("lookup", "closest-face");
   if (lookup != "closest-face" && lookup != "nearest-vertex") {
     throw UsageError("--lookup expects closest-face or nearest-vertex");

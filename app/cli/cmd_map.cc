@@ -28,6 +28,11 @@ options:
   --grow-height M      hysteresis: clusters grow through features above M
                        and are kept when they hold one above tau (default
                        0.015; M >= tau: off, each feature cut at tau)
+  --no-seed-across-views
+                       with the hysteresis, keep only clusters that hold a
+                       feature above tau in their own keyframe (default: also
+                       those holding a feature that another keyframe's such
+                       cluster holds; docs/mapping.md)
   --alpha M            alpha-shape radius (default 0.12)
   --eps M              DBSCAN neighbourhood radius (default 0.10)
   --min-points N       DBSCAN core-point count, the point included (default 3)
@@ -59,7 +64,7 @@ See docs/mapping.md for what the parameters do.
 }  // namespace
 
 int RunMap(const CommandArgs& argv) {
-  Args a(argv, {"quiet", "help", "peak-fit", "no-peak-fit"});
+  Args a(argv, {"quiet", "help", "peak-fit", "no-peak-fit", "no-seed-across-views"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
@@ -67,7 +72,7 @@ int RunMap(const CommandArgs& argv) {
   a.AllowOnly({"out",        "tau",      "grow-height",  "alpha",     "eps",         "min-points",
                "h-min",      "min-area", "min-features", "min-views", "refine-edge", "fusion-radius",
                "fusion",     "support",  "peak-band",    "stations",  "bundle",      "mesh",
-               "mesh-scale", "threads",  "quiet",        "peak-fit",  "no-peak-fit"});
+               "mesh-scale", "threads",  "quiet",        "peak-fit",  "no-peak-fit", "no-seed-across-views"});
   if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
   const std::string results = a.positionals()[0];
   const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
@@ -75,6 +80,7 @@ int RunMap(const CommandArgs& argv) {
   MappingOptions o;
   o.tau = a.GetDouble("tau", o.tau);
   o.shape_grow_height = a.GetDouble("grow-height", o.shape_grow_height);
+  o.shape_seed_across_views = !a.Has("no-seed-across-views");
   o.alpha = a.GetDouble("alpha", o.alpha);
   o.dbscan_eps = a.GetDouble("eps", o.dbscan_eps);
   o.dbscan_min_points = static_cast<int>(a.GetInt("min-points", o.dbscan_min_points));

@@ -25,6 +25,7 @@ options:
   --mesh-scale S       scale applied to the mesh on load
   --model NAME         max-mixture (default), all-on-surface or naive
   --sigma0 M --sigma1 M
+  --labels RULE        cavity (default) or estimate (see 'adjust --help')
   --compare-models     also run the two other surface models
   --tau M --grow-height M --alpha M --eps M --min-points N
   --peak-fit | --no-peak-fit
@@ -43,9 +44,9 @@ int RunPipeline(const CommandArgs& argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"demo", "mesh", "mesh-scale", "model", "sigma0", "sigma1", "compare-models", "tau", "grow-height",
-               "alpha", "eps", "min-points", "max-iterations", "threads", "covariance", "quiet", "out", "peak-fit",
-               "no-peak-fit"});
+  a.AllowOnly({"demo",           "mesh",       "mesh-scale",  "model", "sigma0",   "sigma1",     "labels",
+               "compare-models", "tau",        "grow-height", "alpha", "eps",      "min-points", "max-iterations",
+               "threads",        "covariance", "quiet",       "out",   "peak-fit", "no-peak-fit"});
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
   CheckOutputFolder(out);
@@ -64,6 +65,7 @@ int RunPipeline(const CommandArgs& argv) {
   o.adjustment.model = ParseSurfaceModel(a.Get("model", "max-mixture"));
   o.adjustment.sigma0 = a.GetDouble("sigma0", o.adjustment.sigma0);
   o.adjustment.sigma1 = a.GetDouble("sigma1", o.adjustment.sigma1);
+  o.adjustment.labels = ParseLabelRule(a.Get("labels", LabelRuleName(o.adjustment.labels)));
   o.adjustment.max_iterations = static_cast<int>(a.GetInt("max-iterations", o.adjustment.max_iterations));
   o.adjustment.num_threads = static_cast<int>(a.GetInt("threads", 0));
   o.adjustment.covariance = ParseCovarianceMethod(a.Get("covariance", "full"));

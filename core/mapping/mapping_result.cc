@@ -34,6 +34,7 @@ Json OptionsJson(const MappingOptions& o) {
   Json j = Json::Object();
   j.Set("tau", o.tau);
   j.Set("shape_grow_height", o.shape_grow_height);
+  j.Set("shape_seed_across_views", o.shape_seed_across_views);
   j.Set("alpha", o.alpha);
   j.Set("dbscan_eps", o.dbscan_eps);
   j.Set("dbscan_min_points", o.dbscan_min_points);

@@ -480,6 +480,26 @@ class UiLogicTest : public QObject {
     QVERIFY(!MappingOptionsFrom(values).peak_fit);
   }
 
+  // The E-step's rule and the seeds across views from the parameter panel:
+  // the defaults are the core's, the other choice reaches the options and
+  // changes the stage's key (so the stage is run again).
+  void labelsAndSeedsParametersReachTheCore() {
+    ParameterValues values = DefaultValues(DefaultParameterTable());
+    QVERIFY(AdjustmentOptionsFrom(values).labels == hull::AdjustmentOptions().labels);
+    QCOMPARE(MappingOptionsFrom(values).shape_seed_across_views, hull::MappingOptions().shape_seed_across_views);
+    const QString adjust_key = AdjustmentKey(values), map_key = MappingKey(values);
+    values.insert(QStringLiteral("labels"), QStringLiteral("estimate"));
+    QVERIFY(AdjustmentOptionsFrom(values).labels == hull::LabelRule::kEstimate);
+    QVERIFY(AdjustmentKey(values) != adjust_key);
+    values.insert(QStringLiteral("labels"), QStringLiteral("cavity"));
+    QVERIFY(AdjustmentOptionsFrom(values).labels == hull::LabelRule::kCavity);
+    values.insert(QStringLiteral("shape_seed_across_views"), QStringLiteral("off"));
+    QVERIFY(!MappingOptionsFrom(values).shape_seed_across_views);
+    QVERIFY(MappingKey(values) != map_key);
+    values.insert(QStringLiteral("shape_seed_across_views"), QStringLiteral("on"));
+    QVERIFY(MappingOptionsFrom(values).shape_seed_across_views);
+  }
+
   void commandLine() {
     LaunchOptions o = ParseCommandLine({QStringLiteral("--demo")});
     QVERIFY(o.demo && o.error.isEmpty() && o.paths.isEmpty());

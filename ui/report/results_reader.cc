@@ -78,12 +78,17 @@ MappingResult ReadMapping(const fs::path& dir, const TriangleMesh& cad, const Ad
   m.options.tau = o.Number("tau");
   // Absent from results written before the hysteresis: each feature was cut at tau.
   m.options.shape_grow_height = o.NumberOr("shape_grow_height", m.options.tau);
-  // Absent from results written before the peak fit: off.
-  if (o.Has("peak_fit")) {
-    const Json& v = o.Required("peak_fit");
-    if (!v.is_bool()) o.Fail(v, "peak_fit", "expected true or false");
-    m.options.peak_fit = v.as_bool();
-  }
+  // Absent from results written before the peak fit (before the seeds
+  // across views): off.
+  auto flag = [&](const char* key, bool& value) {
+    value = false;
+    if (!o.Has(key)) return;
+    const Json& v = o.Required(key);
+    if (!v.is_bool()) o.Fail(v, key, "expected true or false");
+    value = v.as_bool();
+  };
+  flag("peak_fit", m.options.peak_fit);
+  flag("shape_seed_across_views", m.options.shape_seed_across_views);
   m.options.alpha = o.Number("alpha");
   m.options.dbscan_eps = o.Number("dbscan_eps");
   m.options.dbscan_min_points = static_cast<int>(o.Integer("dbscan_min_points"));

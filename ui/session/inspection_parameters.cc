@@ -190,6 +190,14 @@ ParameterTable MakeTable() {
                    QStringLiteral("Standard deviation of the surface constraint for features on the model "
                                   "(λ = 1). With σ₀ = 1 m, σ₁ = 2 cm puts the decision boundary at about ±5.6 cm, "
                                   "the smallest object found; 1–5 cm suits ship hulls.")));
+  t.push_back(Choice(QStringLiteral("labels"), kAdjust, Stage::kAdjustment, QStringLiteral("Labels judged by"),
+                     {QStringLiteral("cavity"), QStringLiteral("estimate")},
+                     {QStringLiteral("Observations alone (cavity)"), QStringLiteral("Current estimate (the paper)")},
+                     a.labels == LabelRule::kCavity ? 0 : 1,
+                     QStringLiteral("The max-mixture's E-step. The paper labels a feature by its current estimate, "
+                                    "which its own on-surface constraint has already pulled toward the hull, so a "
+                                    "low object's features can stay labelled on the hull; the cavity rule judges a "
+                                    "feature on the surface again by where its observations alone put it.")));
   t.push_back(Choice(QStringLiteral("lookup"), kAdjust, Stage::kAdjustment, QStringLiteral("Closest face by"),
                      {QStringLiteral("closest-face"), QStringLiteral("nearest-vertex")},
                      {QStringLiteral("Exact closest point"), QStringLiteral("Nearest vertex (the paper)")},
@@ -219,6 +227,12 @@ ParameterTable MakeTable() {
                      QStringLiteral("Estimates each lump's apex beyond its highest feature by a local quadric fit "
                                     "of the features around it, accepted only when concave, inside the features, "
                                     "close to them and the same without any one feature (fusion along normals).")));
+  t.push_back(Choice(QStringLiteral("shape_seed_across_views"), kMap, Stage::kMapping,
+                     QStringLiteral("Seeds across views"), {QStringLiteral("on"), QStringLiteral("off")},
+                     {QStringLiteral("On"), QStringLiteral("Off")}, m.shape_seed_across_views ? 0 : 1,
+                     QStringLiteral("With the hysteresis: a keyframe's cluster that holds no feature above τ is "
+                                    "still kept when one of its features belongs to another keyframe's cluster "
+                                    "that does (a low lump's top seen above τ from one view only).")));
   t.push_back(Real(QStringLiteral("alpha"), kMap, Stage::kMapping, QStringLiteral("α (alpha shapes)"), 0.005, 2.0,
                    m.alpha, 3, 0.01, QStringLiteral("m"),
                    QStringLiteral("Radius of the alpha shapes meshed over each cluster: larger values bridge wider "
@@ -383,6 +397,8 @@ AdjustmentOptions AdjustmentOptionsFrom(const ParameterValues& values) {
   o.model = ModelFromKey(values.value(QStringLiteral("model")).toString());
   o.sigma0 = values.value(QStringLiteral("sigma0"), o.sigma0).toDouble();
   o.sigma1 = values.value(QStringLiteral("sigma1"), o.sigma1).toDouble();
+  o.labels = values.value(QStringLiteral("labels")).toString() == QLatin1String("estimate") ? LabelRule::kEstimate
+                                                                                            : LabelRule::kCavity;
   o.lookup = values.value(QStringLiteral("lookup")).toString() == QLatin1String("nearest-vertex")
                  ? SurfaceLookup::kNearestVertex
                  : SurfaceLookup::kClosestFace;
@@ -398,6 +414,10 @@ MappingOptions MappingOptionsFrom(const ParameterValues& values) {
   o.peak_fit =
       values.value(QStringLiteral("peak_fit"), o.peak_fit ? QStringLiteral("on") : QStringLiteral("off")).toString() ==
       QLatin1String("on");
+  o.shape_seed_across_views = values
+                                  .value(QStringLiteral("shape_seed_across_views"),
+                                         o.shape_seed_across_views ? QStringLiteral("on") : QStringLiteral("off"))
+                                  .toString() == QLatin1String("on");
   o.alpha = values.value(QStringLiteral("alpha"), o.alpha).toDouble();
   o.dbscan_eps = values.value(QStringLiteral("dbscan_eps"), o.dbscan_eps).toDouble();
   o.dbscan_min_points = values.value(QStringLiteral("dbscan_min_points"), o.dbscan_min_points).toInt();
