@@ -110,9 +110,9 @@ class CrossSectionFigure final : public Figure {
     if (fused) legend.push_back({kFused, QStringLiteral("fused model"), LegendEntry::Mark::kLine});
     legend.push_back({kDvl, QStringLiteral("DVL returns"), LegendEntry::Mark::kDot});
     legend.push_back({kOnHull, QStringLiteral("features on the hull"), LegendEntry::Mark::kDot});
-    legend.push_back({kOffHull,
-                      QStringLiteral("features off the hull (|h| > %1 m)").arg(cs_.decision_boundary, 0, 'f', 3),
-                      LegendEntry::Mark::kDot});
+    legend.push_back(
+        {kOffHull, QStringLiteral("features off the hull (λ = 0 or |h| > %1 m)").arg(cs_.decision_boundary, 0, 'f', 3),
+         LegendEntry::Mark::kDot});
     DrawLegendRow(p, QRectF(0, legend_top_, kFigureWidth, 16), legend);
     p.save();
     p.setFont(FigureFont(10));

@@ -271,8 +271,13 @@ CrossSection BuildCrossSection(const ReportInputs& in, const HullFrame& hull, co
     m.model = r->options.model;
     for (const PlacedLandmark& l : LandmarksInModel(*r)) {
       if (!in_slab(l.p_m)) continue;
-      m.features.push_back(
-          {SectionCoordinates(hull, l.p_m), l.deviation, std::abs(l.deviation) > cs.decision_boundary});
+      // The max-mixture's own label (with the cavity E-step a feature just
+      // inside the boundary may be off); the baselines have none: their
+      // features are coloured by the boundary, where the max-mixture would
+      // put them.
+      const bool off =
+          r->options.model == SurfaceModel::kMaxMixture ? l.label == 0 : std::abs(l.deviation) > cs.decision_boundary;
+      m.features.push_back({SectionCoordinates(hull, l.p_m), l.deviation, off});
       cs.data_box.extend(m.features.back().p);
     }
     for (const Eigen::Vector3d& p : DvlReturnsInModel(*in.bundle, *r)) {

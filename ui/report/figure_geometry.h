@@ -101,7 +101,7 @@ std::vector<Segment2> SliceMesh(const TriangleMesh& mesh, const HullFrame& hull,
 struct SectionFeature {
   Eigen::Vector2d p;
   double deviation = 0;
-  bool off_hull = false;  // |deviation| beyond the max-mixture decision boundary
+  bool off_hull = false;  // labelled off (max-mixture); the baselines: |deviation| beyond its decision boundary
 };
 
 struct SectionModel {
