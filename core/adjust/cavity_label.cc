@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "adjust/adjust_options.h"
+#include "adjust/landmark_jacobians.h"
 
 namespace hull::adjust {
 
@@ -15,29 +16,15 @@ CavityEstimate Cavity(const ceres::Problem& problem, double* landmark, ceres::Re
                       double sigma_label) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   CavityEstimate out{h, kNaN};
-  std::vector<ceres::ResidualBlockId> ids;
-  problem.GetResidualBlocksForParameterBlock(landmark, &ids);
   Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
   Eigen::Vector3d n = Eigen::Vector3d::Zero();
-  std::vector<double*> params;
-  for (const ceres::ResidualBlockId id : ids) {
-    params.clear();
-    problem.GetParameterBlocksForResidualBlock(id, &params);
-    const int nr = problem.GetCostFunctionForResidualBlock(id)->num_residuals();
-    std::vector<double> residuals(static_cast<std::size_t>(nr));
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> J(nr, 3);
-    std::vector<double*> jacobians(params.size(), nullptr);
-    for (std::size_t i = 0; i < params.size(); ++i) {
-      if (params[i] == landmark) jacobians[i] = J.data();
-    }
-    double cost = 0;
-    if (!problem.EvaluateResidualBlock(id, true, &cost, residuals.data(), jacobians.data())) continue;
+  ForEachLandmarkJacobian(problem, landmark, [&](ceres::ResidualBlockId id, const LandmarkJacobian& J) {
     if (id == surface) {
       n = J.row(0).transpose();
     } else {
       info += J.transpose() * J;
     }
-  }
+  });
   if (!(n.norm() > 0)) return out;
   n.normalize();
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(info);

@@ -15,13 +15,7 @@
 
 #include <Eigen/Core>
 
-namespace ceres {
-class Problem;
-namespace internal {
-class ResidualBlock;
-}
-using ResidualBlockId = internal::ResidualBlock*;  // as ceres/problem.h declares it
-}  // namespace ceres
+#include "adjust/landmark_jacobians.h"  // ceres::Problem, ceres::ResidualBlockId declared
 
 namespace hull::adjust {
 

@@ -15,6 +15,7 @@
 #include <mutex>
 
 #include "adjust/landmark_covariance_schur.h"
+#include "adjust/landmark_jacobians.h"
 #include "base/error.h"
 
 namespace hull {
@@ -66,24 +67,9 @@ const Eigen::Matrix3d kUnknown = Eigen::Matrix3d::Constant(std::numeric_limits<d
 
 // (J_l^T J_l)^-1 over the residual blocks of one landmark, other blocks fixed.
 Eigen::Matrix3d Conditional(const ceres::Problem& problem, double* block) {
-  std::vector<ceres::ResidualBlockId> ids;
-  problem.GetResidualBlocksForParameterBlock(block, &ids);
   Eigen::Matrix3d info = Eigen::Matrix3d::Zero();
-  std::vector<double*> params;
-  for (const ceres::ResidualBlockId id : ids) {
-    params.clear();
-    problem.GetParameterBlocksForResidualBlock(id, &params);
-    const int n = problem.GetCostFunctionForResidualBlock(id)->num_residuals();
-    std::vector<double> residuals(static_cast<std::size_t>(n));
-    Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> J(n, 3);
-    std::vector<double*> jacobians(params.size(), nullptr);
-    for (std::size_t i = 0; i < params.size(); ++i) {
-      if (params[i] == block) jacobians[i] = J.data();
-    }
-    double cost = 0;
-    if (!problem.EvaluateResidualBlock(id, true, &cost, residuals.data(), jacobians.data())) continue;
-    info += J.transpose() * J;
-  }
+  adjust::ForEachLandmarkJacobian(
+      problem, block, [&](ceres::ResidualBlockId, const adjust::LandmarkJacobian& J) { info += J.transpose() * J; });
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(info);
   if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 0)) return kUnknown;
   const Eigen::Matrix3d c = ldlt.solve(Eigen::Matrix3d::Identity());

@@ -24,13 +24,7 @@
 #include <string>
 #include <vector>
 
-namespace ceres {
-class Problem;
-namespace internal {
-class ResidualBlock;
-}
-using ResidualBlockId = internal::ResidualBlock*;  // as ceres/problem.h declares it
-}  // namespace ceres
+#include "adjust/landmark_jacobians.h"  // ceres::Problem, ceres::ResidualBlockId declared
 
 namespace hull {
 
