@@ -4,21 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <set>
 
+#include "geometry/vertex_regions.h"
 #include "mapping/surface_clip.h"
 
 namespace hull {
 namespace {
-
-int Find(std::vector<int>& parent, int i) {
-  while (parent[static_cast<std::size_t>(i)] != i) {
-    parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    i = parent[static_cast<std::size_t>(i)];
-  }
-  return i;
-}
 
 struct ZoneAccumulator {
   double area = 0, integral = 0, max_height = 0;
@@ -91,27 +83,12 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
   auto above = [&](int v) { return deviation[static_cast<std::size_t>(v)] > h; };
 
   // Connected regions of vertices above h_min (over the mesh's edges).
-  std::vector<int> parent(static_cast<std::size_t>(nv));
-  std::iota(parent.begin(), parent.end(), 0);
-  for (const Face& f : prior.faces) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = f[static_cast<std::size_t>(k)], b = f[static_cast<std::size_t>((k + 1) % 3)];
-      if (above(a) && above(b)) parent[static_cast<std::size_t>(Find(parent, a))] = Find(parent, b);
-    }
-  }
-  std::vector<int> comp_of(static_cast<std::size_t>(nv), -1);
-  std::vector<Component> comps;
-  std::map<int, int> root_to_comp;
+  const VertexRegions regions = ConnectedVertexRegions(prior, above);
+  const std::vector<int>& comp_of = regions.region_of;
+  std::vector<Component> comps(static_cast<std::size_t>(regions.num_regions));
   for (int v = 0; v < nv; ++v) {
-    if (!above(v)) continue;
-    const int root = Find(parent, v);
-    auto it = root_to_comp.find(root);
-    if (it == root_to_comp.end()) {
-      it = root_to_comp.emplace(root, static_cast<int>(comps.size())).first;
-      comps.emplace_back();
-    }
-    comp_of[static_cast<std::size_t>(v)] = it->second;
-    Component& c = comps[static_cast<std::size_t>(it->second)];
+    if (comp_of[static_cast<std::size_t>(v)] < 0) continue;
+    Component& c = comps[static_cast<std::size_t>(comp_of[static_cast<std::size_t>(v)])];
     c.vertices.push_back(v);
     if (c.peak < 0 || deviation[static_cast<std::size_t>(v)] > c.max_height) {
       c.max_height = deviation[static_cast<std::size_t>(v)];

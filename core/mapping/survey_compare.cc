@@ -14,6 +14,7 @@
 #include "geometry/mesh_index.h"
 #include "geometry/mesh_io.h"
 #include "geometry/point_index.h"
+#include "geometry/vertex_regions.h"
 
 namespace hull {
 namespace {
@@ -68,34 +69,21 @@ std::vector<int> ObjectOfVertex(const TriangleMesh& model, const std::vector<Det
     }
   }
   if (unlisted.empty()) return of;
-  // Regions: union-find over the edges between free vertices above min_height.
   const std::size_t n = feet.size();
-  std::vector<std::size_t> parent(n);
-  for (std::size_t i = 0; i < n; ++i) parent[i] = i;
-  auto find = [&](std::size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  auto free_high = [&](int v) {
-    return v >= 0 && static_cast<std::size_t>(v) < n && of[static_cast<std::size_t>(v)] < 0 &&
-           dev[static_cast<std::size_t>(v)] >= min_height;
-  };
-  for (const Face& f : model.faces) {
-    for (int e = 0; e < 3; ++e) {
-      const int u = f[e], w = f[(e + 1) % 3];
-      if (free_high(u) && free_high(w)) parent[find(static_cast<std::size_t>(u))] = find(static_cast<std::size_t>(w));
-    }
-  }
-  std::vector<Eigen::Vector3d> sum(n, Eigen::Vector3d::Zero());
-  std::vector<int> count(n, 0);
+  const VertexRegions regions = ConnectedVertexRegions(model, [&](int v) {
+    return of[static_cast<std::size_t>(v)] < 0 && dev[static_cast<std::size_t>(v)] >= min_height;
+  });
+  const std::size_t nr = static_cast<std::size_t>(regions.num_regions);
+  std::vector<Eigen::Vector3d> sum(nr, Eigen::Vector3d::Zero());
+  std::vector<int> count(nr, 0);
   for (std::size_t v = 0; v < n; ++v) {
-    if (!free_high(static_cast<int>(v))) continue;
-    sum[find(v)] += feet[v];
-    ++count[find(v)];
+    const int r = regions.region_of[v];
+    if (r < 0) continue;
+    sum[static_cast<std::size_t>(r)] += feet[v];
+    ++count[static_cast<std::size_t>(r)];
   }
-  std::vector<int> region_object(n, -1);
-  for (std::size_t r = 0; r < n; ++r) {
-    if (count[r] == 0) continue;
+  std::vector<int> region_object(nr, -1);
+  for (std::size_t r = 0; r < nr; ++r) {
     const Eigen::Vector3d mean = sum[r] / count[r];
     double best = max_radius;
     for (const std::size_t k : unlisted) {
@@ -107,7 +95,8 @@ std::vector<int> ObjectOfVertex(const TriangleMesh& model, const std::vector<Det
     }
   }
   for (std::size_t v = 0; v < n; ++v) {
-    if (free_high(static_cast<int>(v))) of[v] = region_object[find(v)];
+    const int r = regions.region_of[v];
+    if (r >= 0) of[v] = region_object[static_cast<std::size_t>(r)];
   }
   return of;
 }
@@ -278,6 +267,9 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   // lumps is one of theirs); one per object, so that the noise peaks of a
   // flat top do not outvote the objects.
   SurveyComparison out;
+  SurveyRegistrationOptions ro;
+  ro.match_radius = o.peak_spacing;
+  ro.max_offset = o.max_misplacement;
   if (o.register_surveys) {
     auto tops = [](const std::vector<Peak>& peaks, const std::vector<Eigen::Vector3d>& feet,
                    const std::vector<Eigen::Vector3d>& normals) {
@@ -291,9 +283,6 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
       }
       return points;
     };
-    SurveyRegistrationOptions ro;
-    ro.match_radius = o.peak_spacing;
-    ro.max_offset = o.max_misplacement;
     out.registration = RegisterSurveys(tops(peaks_a, feet_a, normals_a), tops(peaks_b, own_feet_b, normals_b), ro);
   }
   const Pose& x_ab = out.registration.a_from_b;  // B's map placed on A's
@@ -323,8 +312,8 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   // registration's residual). Where the registration was asked for but
   // neither found a motion nor found the maps in place (fewer than 3 tops in
   // common either way), they may stand apart by anything: match_radius.
-  const bool in_place = out.registration.registered || !o.register_surveys ||
-                        out.registration.identity_inliers >= SurveyRegistrationOptions{}.min_inliers;
+  const bool in_place =
+      out.registration.registered || !o.register_surveys || out.registration.identity_inliers >= ro.min_inliers;
   const double reach = in_place ? std::min(o.peak_reach + 2 * out.registration.rms, o.match_radius) : o.match_radius;
   out.reach = reach;
 
