@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <functional>
 
 #include "geometry/point_index.h"
 #include "mapping/alpha_shape.h"
@@ -114,39 +115,35 @@ KeyframeClusters ClusterKeyframe(const MappingInput& input, int keyframe, const 
 
 bool Hysteresis(const MappingOptions& o) { return std::min(o.tau, o.shape_grow_height) < o.tau; }
 
-}  // namespace
-
-std::vector<char> SeededLandmarks(const MappingInput& input, const MappingOptions& o) {
-  std::vector<char> seeded(input.landmarks.size(), 0);
-  if (!Hysteresis(o)) return seeded;
-  const int n = static_cast<int>(input.keyframes.size());
-  std::vector<std::vector<int>> per_keyframe(static_cast<std::size_t>(n));
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
-    for (int k = r.begin(); k != r.end(); ++k) {
-      KeyframeShapes out;
-      const KeyframeClusters c = ClusterKeyframe(input, k, o, out);
-      std::vector<char> has_seed(static_cast<std::size_t>(c.db.num_clusters), 0);
-      for (std::size_t i = 0; i < c.seed.size(); ++i) {
-        if (c.db.labels[i] >= 0 && c.seed[i]) has_seed[static_cast<std::size_t>(c.db.labels[i])] = 1;
-      }
-      for (std::size_t i = 0; i < c.seed.size(); ++i) {
-        if (c.db.labels[i] >= 0 && has_seed[static_cast<std::size_t>(c.db.labels[i])]) {
-          per_keyframe[static_cast<std::size_t>(k)].push_back(
-              out.points[static_cast<std::size_t>(c.point_of[i])].landmark);
-        }
-      }
+// The landmarks of a keyframe's clusters that hold a seed (above tau),
+// appended to *list.
+void AddSeededClusterLandmarks(const KeyframeShapes& out, const KeyframeClusters& c, std::vector<int>* list) {
+  std::vector<char> has_seed(static_cast<std::size_t>(c.db.num_clusters), 0);
+  for (std::size_t i = 0; i < c.seed.size(); ++i) {
+    if (c.db.labels[i] >= 0 && c.seed[i]) has_seed[static_cast<std::size_t>(c.db.labels[i])] = 1;
+  }
+  for (std::size_t i = 0; i < c.seed.size(); ++i) {
+    if (c.db.labels[i] >= 0 && has_seed[static_cast<std::size_t>(c.db.labels[i])]) {
+      list->push_back(out.points[static_cast<std::size_t>(c.point_of[i])].landmark);
     }
-  });
+  }
+}
+
+// Per landmark: held by a seeded cluster of some keyframe (per_keyframe:
+// each keyframe's AddSeededClusterLandmarks).
+std::vector<char> SeededFrom(const std::vector<std::vector<int>>& per_keyframe, std::size_t num_landmarks) {
+  std::vector<char> seeded(num_landmarks, 0);
   for (const std::vector<int>& list : per_keyframe) {
     for (const int li : list) seeded[static_cast<std::size_t>(li)] = 1;
   }
   return seeded;
 }
 
-KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o,
-                            const std::vector<char>* seeded) {
-  KeyframeShapes out;
-  KeyframeClusters c = ClusterKeyframe(input, keyframe, o, out);
+// Lines 11-15 after DBSCAN: the hysteresis keeps the clusters that hold a
+// seed (or, seeded, a landmark another keyframe's seeded cluster holds), and
+// each kept cluster gets its alpha shape.
+KeyframeShapes ShapeClusters(const MappingInput& input, const MappingOptions& o, KeyframeShapes out, KeyframeClusters c,
+                             const std::vector<char>* seeded) {
   DbscanResult& db = c.db;
   const std::vector<char>& seed = c.seed;
   const std::vector<int>& cluster_point_of = c.point_of;
@@ -211,25 +208,63 @@ KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const Mappi
   return out;
 }
 
+}  // namespace
+
+std::vector<char> SeededLandmarks(const MappingInput& input, const MappingOptions& o) {
+  if (!Hysteresis(o)) return std::vector<char>(input.landmarks.size(), 0);
+  const int n = static_cast<int>(input.keyframes.size());
+  std::vector<std::vector<int>> per_keyframe(static_cast<std::size_t>(n));
+  tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
+    for (int k = r.begin(); k != r.end(); ++k) {
+      KeyframeShapes out;
+      const KeyframeClusters c = ClusterKeyframe(input, k, o, out);
+      AddSeededClusterLandmarks(out, c, &per_keyframe[static_cast<std::size_t>(k)]);
+    }
+  });
+  return SeededFrom(per_keyframe, input.landmarks.size());
+}
+
+KeyframeShapes DetectShapes(const MappingInput& input, int keyframe, const MappingOptions& o,
+                            const std::vector<char>* seeded) {
+  KeyframeShapes out;
+  KeyframeClusters c = ClusterKeyframe(input, keyframe, o, out);
+  return ShapeClusters(input, o, std::move(out), std::move(c), seeded);
+}
+
 std::vector<KeyframeShapes> DetectAllShapes(const MappingInput& input, const MappingOptions& options,
                                             Progress& progress) {
   const int n = static_cast<int>(input.keyframes.size());
   std::vector<KeyframeShapes> out(static_cast<std::size_t>(n));
-  const std::vector<char> seeded =
-      options.shape_seed_across_views ? SeededLandmarks(input, options) : std::vector<char>();
-  const std::vector<char>* seeded_ptr = options.shape_seed_across_views ? &seeded : nullptr;
-  progress.ThrowIfCancelled();
+  std::vector<KeyframeClusters> clusters(static_cast<std::size_t>(n));
   std::atomic<bool> cancelled{false};
-  tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
-    if (cancelled.load(std::memory_order_relaxed) || progress.Cancelled()) {
-      cancelled = true;
-      return;
+  // Each keyframe's stage in parallel, stopping when progress asks.
+  auto each_keyframe = [&](const std::function<void(std::size_t)>& f) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, n, 16), [&](const tbb::blocked_range<int>& r) {
+      if (cancelled.load(std::memory_order_relaxed) || progress.Cancelled()) {
+        cancelled = true;
+        return;
+      }
+      for (int k = r.begin(); k != r.end(); ++k) f(static_cast<std::size_t>(k));
+    });
+    progress.ThrowIfCancelled();
+    if (cancelled) throw Cancelled();
+  };
+  // DBSCAN once per keyframe; the seeds across views read every keyframe's
+  // clusters before any is shaped.
+  each_keyframe([&](std::size_t k) { clusters[k] = ClusterKeyframe(input, static_cast<int>(k), options, out[k]); });
+  std::vector<char> seeded;
+  if (options.shape_seed_across_views) {
+    std::vector<std::vector<int>> per_keyframe(static_cast<std::size_t>(n));
+    if (Hysteresis(options)) {
+      for (std::size_t k = 0; k < clusters.size(); ++k)
+        AddSeededClusterLandmarks(out[k], clusters[k], &per_keyframe[k]);
     }
-    for (int k = r.begin(); k != r.end(); ++k)
-      out[static_cast<std::size_t>(k)] = DetectShapes(input, k, options, seeded_ptr);
+    seeded = SeededFrom(per_keyframe, input.landmarks.size());
+  }
+  const std::vector<char>* seeded_ptr = options.shape_seed_across_views ? &seeded : nullptr;
+  each_keyframe([&](std::size_t k) {
+    out[k] = ShapeClusters(input, options, std::move(out[k]), std::move(clusters[k]), seeded_ptr);
   });
-  progress.ThrowIfCancelled();
-  if (cancelled) throw Cancelled();
   return out;
 }
 
