@@ -636,14 +636,8 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   ceres::Solver::Summary summary;
   std::vector<char> dropped(s.landmark.size(), 0);
   double initial_cost = -1, solver_seconds = 0;
-  // The E-step by the cavity estimate (cavity_label.h): every landmark is
-  // judged by its estimate without its own surface factor, under the
-  // component that factor applies now: one on the model whose cavity
-  // estimate is off it is labelled off from now on, and one labelled off
-  // earlier whose estimate (its cavity estimate: sigma0 hardly pulls it) is
-  // back on the model -- a wrong observation removed since, a linearisation
-  // that overshot -- is given back to the max-mixture. Returns how many
-  // labels changed.
+  // The E-step by the cavity estimate (cavity_label.h, CavityLabelOff) over
+  // every landmark still in the problem; returns how many labels changed.
   int label_rounds = 0;
   auto cavity_step = [&]() -> std::size_t {
     if (!cavity_labels || label_rounds >= o.label_rounds) return 0;
@@ -654,20 +648,10 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
       if (dropped[li]) continue;
       const Eigen::Vector3d l(s.landmark[li][0], s.landmark[li][1], s.landmark[li][2]);
       const double h = adjust::SurfaceDeviation(index, x_gM_now, l, o.lookup);
-      if (cavity_off[li]) {
-        const adjust::CavityEstimate c = adjust::Cavity(problem, s.landmark[li].data(), surface_block[li], h, o.sigma0);
-        if (!adjust::CavityOffModel(c, o.sigma0, o.sigma1)) {
-          cavity_off[li] = 0;
-          ++n;
-        }
-        continue;
-      }
-      if (MaxMixtureLabel(h, o.sigma0, o.sigma1) != 1) continue;
-      const adjust::CavityEstimate c = adjust::Cavity(problem, s.landmark[li].data(), surface_block[li], h, o.sigma1);
-      if (adjust::CavityOffModel(c, o.sigma0, o.sigma1)) {
-        cavity_off[li] = 1;
-        ++n;
-      }
+      const char off = adjust::CavityLabelOff(problem, s.landmark[li].data(), surface_block[li], h, cavity_off[li] != 0,
+                                              o.sigma0, o.sigma1);
+      n += off != cavity_off[li];
+      cavity_off[li] = off;
     }
     return n;
   };

@@ -40,4 +40,11 @@ bool CavityOffModel(const CavityEstimate& c, double sigma0, double sigma1) {
   return std::isfinite(c.h) && MaxMixtureLabel(c.h, sigma0, sigma1) == 0;
 }
 
+bool CavityLabelOff(const ceres::Problem& problem, double* landmark, ceres::ResidualBlockId surface, double h, bool off,
+                    double sigma0, double sigma1) {
+  if (off) return CavityOffModel(Cavity(problem, landmark, surface, h, sigma0), sigma0, sigma1);
+  if (MaxMixtureLabel(h, sigma0, sigma1) != 1) return false;
+  return CavityOffModel(Cavity(problem, landmark, surface, h, sigma1), sigma0, sigma1);
+}
+
 }  // namespace hull::adjust

@@ -39,4 +39,14 @@ CavityEstimate Cavity(const ceres::Problem& problem, double* landmark, ceres::Re
 // of h_c (MaxMixtureLabel) is 0.
 bool CavityOffModel(const CavityEstimate& c, double sigma0, double sigma1);
 
+// The E-step for one landmark at signed distance h, `off` whether it is
+// labelled off by its cavity estimate now; returns whether it is after this
+// step. One on the model (by h) whose cavity estimate is off it is labelled
+// off; one labelled off earlier whose estimate (its cavity estimate: sigma0
+// hardly pulls it) is back on the model -- a wrong observation removed
+// since, a linearisation that overshot -- is given back to the max-mixture;
+// one the max-mixture puts off by h stays as it is.
+bool CavityLabelOff(const ceres::Problem& problem, double* landmark, ceres::ResidualBlockId surface, double h, bool off,
+                    double sigma0, double sigma1);
+
 }  // namespace hull::adjust
