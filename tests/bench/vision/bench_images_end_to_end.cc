@@ -13,12 +13,17 @@
 // may sit centimetres to decimetres from the truth in M with no object wrong.
 //
 //   bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N]
-//                           [--tau M] [--threads N] [--min-features N] [--grow-height M]
+//                           [--tau M] [--threads N] [--min-features N] [--max-features N]
+//                           [--grow-height M]
 //                           [--peak-fit | --no-peak-fit]
 //                           [--keep DIR [--reuse]] [--trace OBJECT [--trace-above M]]
 // --keep DIR keeps both bundles (DIR/given, DIR/images; the front end's
 // features.csv and match-graph.csv written into DIR/images); --reuse then
-// starts from them (no rendering, no front end) to score other options.
+// starts from them (no rendering, no front end) to score other options;
+// with DIR/images/features.csv and DIR/images-adjustment deleted it runs the
+// front end and the adjustment again on the kept images (--max-features).
+// --max-features N sets the front end's SIFT features per image
+// (DetectionOptions::max_features; 0: all) for the run from the images.
 // --min-features N sets MappingOptions::object_min_features (0: the area
 // test alone, the detection before small supported objects were kept);
 // --grow-height M the level Algorithm 1's hysteresis grows clusters down
@@ -363,13 +368,14 @@ struct RunFigures {
 };
 
 RunFigures RunOne(const std::string& bundle_dir, const PipelineOptions& o, const SimulatedSurvey& sim,
-                  double min_height, const char* label, bool reuse, const TraceRequest& trace) {
+                  double min_height, const char* label, bool reuse, const TraceRequest& trace, int max_features) {
   std::printf("\n== %s (%s)\n", label, bundle_dir.c_str());
   RunFigures f;
   NullProgress quiet;
   const double t0 = Now();
   FrontEndOptions fe;
   fe.threads = o.adjustment.num_threads;
+  if (max_features >= 0) fe.detection.max_features = max_features;
   const PipelineInputs in = LoadPipelineInputs(bundle_dir, "", 1.0, &quiet, fe);
   if (in.front_end) {
     f.front_end_seconds = in.front_end->seconds;
@@ -407,7 +413,7 @@ int main(int argc, char** argv) {
   std::string preset = "demo", keep;
   bool reuse = false;
   double camera_scale = 0.5, tau = 0.06, min_height = 0.06;
-  int seed = 1, threads = 2, min_features = -1;
+  int seed = 1, threads = 2, min_features = -1, max_features = -1;
   double grow_height = -1;
   TraceRequest trace;
   int peak_fit = -1;  // -1: MappingOptions' default
@@ -432,6 +438,8 @@ int main(int argc, char** argv) {
       threads = std::atoi(value().c_str());
     } else if (a == "--min-features") {
       min_features = std::atoi(value().c_str());
+    } else if (a == "--max-features") {
+      max_features = std::atoi(value().c_str());
     } else if (a == "--keep") {
       keep = value();
     } else if (a == "--grow-height") {
@@ -449,7 +457,8 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr,
                    "usage: bench_images_end_to_end [--preset demo|mono] [--camera-scale S] [--seed N] [--tau M] "
-                   "[--threads N] [--min-features N] [--grow-height M] [--peak-fit | --no-peak-fit] "
+                   "[--threads N] [--min-features N] [--max-features N] [--grow-height M] "
+                   "[--peak-fit | --no-peak-fit] "
                    "[--keep DIR [--reuse]] [--trace OBJECT [--trace-above M]]\n");
       return 2;
     }
@@ -470,7 +479,8 @@ int main(int argc, char** argv) {
   NullProgress quiet;
   double t = Now();
   const SimulatedSurvey sim = SimulateSurvey(so, quiet);  // seconds; the truth's object meshes for the scoring
-  if (reuse && fs::exists(fs::path(images) / "features.csv")) {
+  if (reuse && fs::exists(fs::path(images) / "survey.json")) {
+    // A kept images bundle without features.csv gets the front end again.
     std::printf("%s: reusing the bundles in %s\n", preset.c_str(), root.c_str());
   } else {
     WriteSimulatedSurvey(sim, given, false, quiet);
@@ -489,8 +499,8 @@ int main(int argc, char** argv) {
   if (min_features >= 0) o.mapping.object_min_features = min_features;
   if (grow_height >= 0) o.mapping.shape_grow_height = grow_height;
   if (peak_fit >= 0) o.mapping.peak_fit = peak_fit == 1;
-  const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse, trace);
-  const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse, trace);
+  const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse, trace, -1);
+  const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse, trace, max_features);
 
   auto row = [](const char* what, const RunFigures& f) {
     std::printf("| %s | %zu | %.2f %% | %.4f m | %.4f m | %d of %d | %d | %d | %+.3f m | %+.3f m | %.3f m | %.0f s |\n",
