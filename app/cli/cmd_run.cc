@@ -31,6 +31,9 @@ options:
   --peak-fit | --no-peak-fit
                        mapping (see 'map --help')
   --max-iterations N   --threads N
+  --max-features N     a version 2 bundle without features.csv: the front
+                       end's SIFT features per image (default 2000; see
+                       'features --help')
   --covariance M       landmark covariances and sigma of h: full (default),
                        conditional (poses held fixed; cheap) or none
   --quiet
@@ -44,9 +47,9 @@ int RunPipeline(const CommandArgs& argv) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"demo",           "mesh",       "mesh-scale",  "model", "sigma0",   "sigma1",     "labels",
-               "compare-models", "tau",        "grow-height", "alpha", "eps",      "min-points", "max-iterations",
-               "threads",        "covariance", "quiet",       "out",   "peak-fit", "no-peak-fit"});
+  a.AllowOnly({"demo",           "mesh",       "mesh-scale",  "model", "sigma0",   "sigma1",      "labels",
+               "compare-models", "tau",        "grow-height", "alpha", "eps",      "min-points",  "max-iterations",
+               "threads",        "covariance", "quiet",       "out",   "peak-fit", "no-peak-fit", "max-features"});
   const std::string out = a.Get("out");
   if (out.empty()) throw UsageError("--out DIR is required");
   CheckOutputFolder(out);
@@ -79,11 +82,15 @@ int RunPipeline(const CommandArgs& argv) {
   if (a.Has("peak-fit")) o.mapping.peak_fit = true;
   if (a.Has("no-peak-fit")) o.mapping.peak_fit = false;
   o.Check();
+  FrontEndOptions front_end;
+  front_end.threads = o.adjustment.num_threads;
+  front_end.detection.max_features = static_cast<int>(a.GetInt("max-features", front_end.detection.max_features));
+  front_end.Check();
   const double start = a.Has("demo") ? 0.05 : 0.0;
   // A version 2 bundle without features.csv: the visual front end first.
   SubProgress pf(progress, start, start + 0.2);
   const PipelineInputs in =
-      LoadPipelineInputs(bundle_dir, a.Get("mesh", ""), a.GetDouble("mesh-scale", 1.0), &pf, FrontEndOptions{});
+      LoadPipelineInputs(bundle_dir, a.Get("mesh", ""), a.GetDouble("mesh-scale", 1.0), &pf, front_end);
   if (in.front_end) {
     std::printf("\nfront end: %d landmarks, %zu observations from the images (%.1f s)\n", in.front_end->landmarks,
                 in.front_end->features.size(), in.front_end->seconds);

@@ -500,7 +500,8 @@ int main(int argc, char** argv) {
   if (grow_height >= 0) o.mapping.shape_grow_height = grow_height;
   if (peak_fit >= 0) o.mapping.peak_fit = peak_fit == 1;
   const RunFigures a = RunOne(given, o, sim, min_height, "from the simulator's feature tracks", reuse, trace, -1);
-  const RunFigures b = RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse, trace, max_features);
+  const RunFigures b =
+      RunOne(images, o, sim, min_height, "from the images (visual front end)", reuse, trace, max_features);
 
   auto row = [](const char* what, const RunFigures& f) {
     std::printf("| %s | %zu | %.2f %% | %.4f m | %.4f m | %d of %d | %d | %d | %+.3f m | %+.3f m | %.3f m | %.0f s |\n",

@@ -57,6 +57,9 @@ TEST(Cli, BadCommandLinesExitTwoNamingTheProblem) {
   r = Cli({"adjust", "somewhere", "--out", "x", "--linear-solver", "magic"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--linear-solver expects sparse-schur or iterative-schur"), std::string::npos) << r.output;
+  r = Cli({"run", "somewhere", "--out", "x", "--max-features", "-1"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("max_features"), std::string::npos) << r.output;
 }
 
 TEST(Cli, MissingBundleIsNamed) {
