@@ -59,17 +59,8 @@ Json OptionsJson(const MappingOptions& o) {
 }
 
 void WriteObjects(const MappingResult& r, const std::string& dir) {
-  CsvWriter csv({"id", "x", "y", "z", "nx", "ny", "nz", "distance_from_bow", "station", "side", "area", "mean_height",
-                 "max_height", "features", "views", "keyframes", "p95_height", "max_height_sigma"});
   Json list = Json::Array();
   for (const DetectedObject& o : r.objects) {
-    csv.Add(o.id);
-    for (int k = 0; k < 3; ++k) csv.Add(o.centroid_m[k]);
-    for (int k = 0; k < 3; ++k) csv.Add(o.normal_m[k]);
-    csv.Add(o.distance_from_bow).Add(o.station).Add(HullSideName(o.side)).Add(o.area).Add(o.mean_height);
-    csv.Add(o.max_height).Add(o.num_features).Add(o.num_views).Add(JoinIds(o.keyframes)).Add(o.p95_height);
-    csv.AddOptional(std::isfinite(o.max_height_sigma) ? std::optional<double>(o.max_height_sigma) : std::nullopt);
-    csv.EndRow();
     Json j = Json::Object();
     j.Set("id", o.id);
     j.Set("centroid", Vec3(o.centroid_m));
@@ -88,7 +79,7 @@ void WriteObjects(const MappingResult& r, const std::string& dir) {
     j.Set("vertices", Json::ArrayOf(o.vertices));  // the footprint's model.ply vertices (survey comparison)
     list.Push(std::move(j));
   }
-  WriteFileAtomic(Path(dir, "objects.csv"), csv.text());
+  WriteFileAtomic(Path(dir, "objects.csv"), ObjectsCsv(r));
   Json root = Json::Object();
   root.Set("format", "hull-mapping-objects");
   root.Set("version", MappingResult::kFormatVersion);
@@ -97,14 +88,8 @@ void WriteObjects(const MappingResult& r, const std::string& dir) {
 }
 
 void WriteZones(const MappingResult& r, const std::string& dir) {
-  CsvWriter csv({"station", "side", "from_bow", "to_bow", "hull_area", "inspected_area", "covered_area",
-                 "cover_percent", "objects", "mean_height", "max_height", "rating", "note"});
   Json list = Json::Array();
   for (const ZoneAssessment& z : r.zones) {
-    csv.Add(z.station).Add(HullSideName(z.side)).Add(z.from_bow).Add(z.to_bow).Add(z.hull_area);
-    csv.Add(z.inspected_area).Add(z.covered_area).Add(z.cover_percent).Add(z.objects).Add(z.mean_height);
-    csv.Add(z.max_height).Add(FoulingRatingName(z.rating)).Add(z.note);
-    csv.EndRow();
     Json j = Json::Object();
     j.Set("station", z.station);
     j.Set("side", HullSideName(z.side));
@@ -121,7 +106,7 @@ void WriteZones(const MappingResult& r, const std::string& dir) {
     j.Set("note", z.note);
     list.Push(std::move(j));
   }
-  WriteFileAtomic(Path(dir, "zones.csv"), csv.text());
+  WriteFileAtomic(Path(dir, "zones.csv"), ZonesCsv(r));
   Json root = Json::Object();
   root.Set("format", "hull-mapping-zones");
   root.Set("version", MappingResult::kFormatVersion);
@@ -214,6 +199,33 @@ void WriteSummary(const MappingResult& r, const std::string& dir) {
 }
 
 }  // namespace
+
+std::string ObjectsCsv(const MappingResult& r) {
+  CsvWriter csv({"id", "x", "y", "z", "nx", "ny", "nz", "distance_from_bow", "station", "side", "area", "mean_height",
+                 "max_height", "features", "views", "keyframes", "p95_height", "max_height_sigma"});
+  for (const DetectedObject& o : r.objects) {
+    csv.Add(o.id);
+    for (int k = 0; k < 3; ++k) csv.Add(o.centroid_m[k]);
+    for (int k = 0; k < 3; ++k) csv.Add(o.normal_m[k]);
+    csv.Add(o.distance_from_bow).Add(o.station).Add(HullSideName(o.side)).Add(o.area).Add(o.mean_height);
+    csv.Add(o.max_height).Add(o.num_features).Add(o.num_views).Add(JoinIds(o.keyframes)).Add(o.p95_height);
+    csv.AddOptional(std::isfinite(o.max_height_sigma) ? std::optional<double>(o.max_height_sigma) : std::nullopt);
+    csv.EndRow();
+  }
+  return csv.Take();
+}
+
+std::string ZonesCsv(const MappingResult& r) {
+  CsvWriter csv({"station", "side", "from_bow", "to_bow", "hull_area", "inspected_area", "covered_area",
+                 "cover_percent", "objects", "mean_height", "max_height", "rating", "note"});
+  for (const ZoneAssessment& z : r.zones) {
+    csv.Add(z.station).Add(HullSideName(z.side)).Add(z.from_bow).Add(z.to_bow).Add(z.hull_area);
+    csv.Add(z.inspected_area).Add(z.covered_area).Add(z.cover_percent).Add(z.objects).Add(z.mean_height);
+    csv.Add(z.max_height).Add(FoulingRatingName(z.rating)).Add(z.note);
+    csv.EndRow();
+  }
+  return csv.Take();
+}
 
 void WriteMappingResult(const MappingResult& r, const std::string& final_dir) {
   WriteDirectoryAtomic(final_dir, [&](const std::string& dir) {

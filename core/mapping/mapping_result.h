@@ -70,4 +70,10 @@ struct MappingResult {
 // intact). Throws std::runtime_error when a file cannot be written.
 void WriteMappingResult(const MappingResult& result, const std::string& dir);
 
+// The texts of objects.csv and zones.csv as WriteMappingResult writes them
+// (docs/results-format.md); also what the GUI exports of the mapping on
+// screen.
+std::string ObjectsCsv(const MappingResult& result);
+std::string ZonesCsv(const MappingResult& result);
+
 }  // namespace hull

@@ -82,7 +82,7 @@ void ExportChecks() {
   QFile zones(dir.filePath(QStringLiteral("zones.csv")));
   QVERIFY(zones.open(QIODevice::ReadOnly));
   QCOMPARE(zones.readAll().trimmed().split('\n').size(), static_cast<int>(mapping->result->zones.size()) + 1);
-  QCOMPARE(QString::fromStdString(hull::ui::ObjectsCsv(*mapping->result)).count('\n'),
+  QCOMPARE(QString::fromStdString(hull::ObjectsCsv(*mapping->result)).count('\n'),
            static_cast<int>(mapping->result->objects.size()) + 1);
 
   // A screenshot of every visible view, each a real picture.

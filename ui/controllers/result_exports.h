@@ -2,7 +2,8 @@
 // remeshed model (PLY with the per-vertex "deviation" and "fusions", OBJ,
 // STL, or an exporter plugin's format such as glTF, by the extension) and the detected objects and zones as CSV, in the
 // columns of the results format (docs/results-format.md: objects.csv and
-// zones.csv). Errors go through failed(); nothing here shows a dialog.
+// zones.csv: ObjectsCsv and ZonesCsv of mapping/mapping_result.h). Errors go
+// through failed(); nothing here shows a dialog.
 #pragma once
 
 #include <QObject>
@@ -14,10 +15,6 @@
 #include "ui/session/session.h"
 
 namespace hull::ui {
-
-// The CSV texts (Qt-free; also for tests).
-std::string ObjectsCsv(const MappingResult& result);
-std::string ZonesCsv(const MappingResult& result);
 
 class ResultExporter : public QObject {
   Q_OBJECT
