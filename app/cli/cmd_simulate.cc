@@ -69,6 +69,10 @@ options (each overrides the preset):
   --servo-bias-deg D --model-pose-error-m M --model-pose-error-deg D
   --extrinsic-error-m M --extrinsic-error-deg D
   --write-landmarks        also write landmarks.csv (noisy initial positions)
+  --shift X,Y              move the survey's frame: every position in g (nav.csv,
+                           landmarks.csv, the model pose guess, truth/) X m east
+                           and Y m north, as surveys in UTM coordinates arrive
+                           (e.g. 400000,5000000); not with --images
   --images                 also render the camera images (bundle version 2)
   --image-dropout P        probability that an image is missing (dropped frame; default 0)
   --attenuation C          water attenuation, 1/m (default 0.3)
@@ -134,6 +138,7 @@ int RunSimulate(const CommandArgs& argv) {
                "extrinsic-error-m",
                "extrinsic-error-deg",
                "write-landmarks",
+               "shift",
                "images",
                "image-dropout",
                "attenuation",
@@ -220,6 +225,10 @@ int RunSimulate(const CommandArgs& argv) {
   o.extrinsic_error_m = a.GetDouble("extrinsic-error-m", o.extrinsic_error_m);
   o.extrinsic_error_deg = a.GetDouble("extrinsic-error-deg", o.extrinsic_error_deg);
   o.write_landmarks = a.Has("write-landmarks");
+  if (a.Has("shift")) {
+    const Eigen::Vector3d v = ParseVector3("shift", a.Get("shift") + ",0");
+    o.shift = Eigen::Vector3d(v.x(), v.y(), 0.0);
+  }
   o.images = a.Has("images");
   for (const char* name : {"image-dropout", "attenuation", "backscatter"}) {
     if (a.Has(name) && !o.images) throw UsageError(std::string("--") + name + " needs --images");

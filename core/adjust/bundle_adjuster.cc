@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <memory_resource>
@@ -31,6 +32,7 @@
 #include "base/error.h"
 #include "geometry/mesh_index.h"
 #include "geometry/query_bounds.h"
+#include "survey/survey_origin.h"
 #include "survey/survey_plausibility.h"
 
 namespace hull {
@@ -360,9 +362,12 @@ class BundleAdjuster {
   void RecordDvlResiduals(bool initial);
   ceres::Solver::Options SolverOptions();
   void ThrowIfSolveFailed(const Observer& observer, const ceres::Solver::Summary& summary);
-  std::size_t CavityStep();
+  std::vector<std::size_t> CavityStep();
+  std::size_t LocalSolveLimit() const;
+  void SolveLandmarkAlone(std::size_t li);
   struct Rejected {
     std::size_t observations = 0, landmarks = 0;
+    std::vector<std::size_t> touched;  // landmarks still in the problem that lost an observation
   };
   Rejected RejectOutliers();
   std::size_t DropLandmarksWithFewViews(std::vector<ReprojectionBlock>* kept, std::set<ceres::ResidualBlockId>* gone);
@@ -402,7 +407,7 @@ class BundleAdjuster {
   int num_threads_ = 1;
   std::vector<char> dropped_;  // per landmark: removed by the outlier rejection
   int label_rounds_ = 0;
-  double initial_cost_ = -1, solver_seconds_ = 0;
+  double initial_cost_ = -1, solver_seconds_ = 0, final_cost_ = 0;
   ceres::Solver::Summary summary_;
 };
 
@@ -764,9 +769,11 @@ void BundleAdjuster::ThrowIfSolveFailed(const Observer& observer, const ceres::S
 }
 
 // Solve; after each solve the cavity E-step and, for rejection_rounds
-// rounds, the outlier rejection; solved again while either changed the
-// problem (after the rejection rounds: while the labels change, at most
-// label_rounds E-steps in all).
+// rounds, the outlier rejection, and solved again while either changed
+// something. What changed decides what is solved again: the whole problem
+// when many landmarks are touched (relabelled, or an observation of theirs
+// removed), else those landmarks alone (SolveLandmarkAlone), every other
+// block held at the solution.
 void BundleAdjuster::Solve() {
   ceres::Solver::Options so = SolverOptions();
   Observer observer(s_, index_, o_, cavity_off_, progress_, result_.iterations,
@@ -774,46 +781,109 @@ void BundleAdjuster::Solve() {
   so.callbacks.push_back(&observer);
   progress_.Update(0.1, std::string(SurfaceModelName(o_.model)) + " adjustment: solving");
   dropped_.assign(s_.landmark.size(), 0);
+  std::vector<std::size_t> touched;  // empty: solve the whole problem
   for (int round = 0;; ++round) {
-    observer.set_iteration_offset(result_.iterations.empty() ? 0 : result_.iterations.back().iteration);
-    ceres::Solve(so, &problem_, &summary_);
-    if (o_.verbose) std::printf("%s\n", summary_.FullReport().c_str());
-    ThrowIfSolveFailed(observer, summary_);
-    if (initial_cost_ < 0) initial_cost_ = summary_.initial_cost;
-    solver_seconds_ += summary_.total_time_in_seconds;
-    const std::size_t relabelled = CavityStep();
-    if (round >= o_.rejection_rounds) {
-      if (relabelled == 0) break;
-      progress_.Update(observer.fraction(),
-                       std::to_string(relabelled) + " landmarks off the model by their cavity estimate; solving again");
-      continue;
+    if (round == 0 || touched.size() > LocalSolveLimit()) {
+      observer.set_iteration_offset(result_.iterations.empty() ? 0 : result_.iterations.back().iteration);
+      ceres::Solve(so, &problem_, &summary_);
+      if (o_.verbose) std::printf("%s\n", summary_.FullReport().c_str());
+      ThrowIfSolveFailed(observer, summary_);
+      if (initial_cost_ < 0) initial_cost_ = summary_.initial_cost;
+      solver_seconds_ += summary_.total_time_in_seconds;
+      final_cost_ = summary_.final_cost;
+    } else {
+      const auto t = Clock::now();
+      for (const std::size_t li : touched) SolveLandmarkAlone(li);
+      solver_seconds_ += std::chrono::duration<double>(Clock::now() - t).count();
+      ceres::Problem::EvaluateOptions eo;
+      eo.num_threads = num_threads_;
+      problem_.Evaluate(eo, &final_cost_, nullptr, nullptr, nullptr);
     }
-    const Rejected rejected = RejectOutliers();
-    if (rejected.observations == 0 && relabelled == 0) break;
+    const std::vector<std::size_t> relabelled = CavityStep();
+    const Rejected rejected = round < o_.rejection_rounds ? RejectOutliers() : Rejected{};
+    touched = rejected.touched;
+    touched.insert(touched.end(), relabelled.begin(), relabelled.end());
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    if (touched.empty() && rejected.landmarks == 0) break;
     progress_.Update(observer.fraction(), "removed " + std::to_string(rejected.observations) +
                                               " outlying observations and " + std::to_string(rejected.landmarks) +
-                                              " landmarks, " + std::to_string(relabelled) +
-                                              " landmarks off the model by their cavity estimate; solving again");
+                                              " landmarks, " + std::to_string(relabelled.size()) +
+                                              " landmarks off the model by their cavity estimate; solving " +
+                                              (touched.size() > LocalSolveLimit() ? "again" : "those landmarks again"));
   }
 }
 
+// At most this share of the landmarks touched after a solve (relabelled, or
+// an observation of theirs removed) is solved again alone; more, and the
+// whole problem is solved again. A landmark moves the poses it shares with
+// thousands of others by a negligible amount, while a whole solve costs
+// Ceres' set-up, factorisations and the steps LM rejects near the optimum:
+// on the demo and mono surveys more than the label step itself.
+constexpr double kLocalSolveShare = 0.01;
+
+std::size_t BundleAdjuster::LocalSolveLimit() const {
+  return static_cast<std::size_t>(kLocalSolveShare * static_cast<double>(s_.landmark.size()));
+}
+
+// Landmark li solved alone: its residual blocks (the same cost functions and
+// losses) with every other parameter block held.
+void BundleAdjuster::SolveLandmarkAlone(std::size_t li) {
+  ceres::Problem::Options po;
+  po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem alone(po);
+  double* landmark = s_.landmark[li].data();
+  std::vector<ceres::ResidualBlockId> ids;
+  problem_.GetResidualBlocksForParameterBlock(landmark, &ids);
+  std::vector<double*> params;
+  for (const ceres::ResidualBlockId id : ids) {
+    params.clear();
+    problem_.GetParameterBlocksForResidualBlock(id, &params);
+    for (double* p : params) {
+      if (p == landmark || alone.HasParameterBlock(p)) continue;
+      alone.AddParameterBlock(p, problem_.ParameterBlockSize(p));
+      alone.SetParameterBlockConstant(p);
+    }
+    alone.AddResidualBlock(const_cast<ceres::CostFunction*>(problem_.GetCostFunctionForResidualBlock(id)),
+                           const_cast<ceres::LossFunction*>(problem_.GetLossFunctionForResidualBlock(id)), params);
+  }
+  ceres::Solver::Options so;
+  so.linear_solver_type = ceres::DENSE_QR;
+  so.max_num_iterations = o_.max_iterations;
+  so.function_tolerance = o_.function_tolerance;
+  so.gradient_tolerance = o_.gradient_tolerance;
+  so.parameter_tolerance = o_.parameter_tolerance;
+  so.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(so, &alone, &summary);
+}
+
 // The E-step by the cavity estimate (cavity_label.h, CavityLabelOff) over
-// every landmark still in the problem; returns how many labels changed.
-std::size_t BundleAdjuster::CavityStep() {
-  if (!cavity_labels_ || label_rounds_ >= o_.label_rounds) return 0;
+// every landmark still in the problem, on the adjustment's threads (each
+// landmark is judged on its own and nothing in the problem changes until
+// every judgement is in); returns the landmarks whose label changed.
+std::vector<std::size_t> BundleAdjuster::CavityStep() {
+  if (!cavity_labels_ || label_rounds_ >= o_.label_rounds) return {};
   ++label_rounds_;
   const Pose x_gM_now = s_.ModelPose();
-  std::size_t n = 0;
-  for (std::size_t li = 0; li < s_.landmark.size(); ++li) {
+  std::vector<char> off(cavity_off_);  // the factors read cavity_off_: changed once all are judged
+  const auto n = static_cast<std::int64_t>(s_.landmark.size());
+#pragma omp parallel for schedule(dynamic, 64) num_threads(num_threads_)
+  for (std::int64_t i = 0; i < n; ++i) {
+    const auto li = static_cast<std::size_t>(i);
     if (dropped_[li]) continue;
     const Eigen::Vector3d l(s_.landmark[li][0], s_.landmark[li][1], s_.landmark[li][2]);
     const double h = adjust::SurfaceDeviation(index_, x_gM_now, l, o_.lookup);
-    const char off = adjust::CavityLabelOff(problem_, s_.landmark[li].data(), surface_block_[li], h,
-                                            cavity_off_[li] != 0, o_.sigma0, o_.sigma1);
-    n += off != cavity_off_[li];
-    cavity_off_[li] = off;
+    off[li] = adjust::CavityLabelOff(problem_, s_.landmark[li].data(), surface_block_[li], h, cavity_off_[li] != 0,
+                                     o_.sigma0, o_.sigma1);
   }
-  return n;
+  std::vector<std::size_t> changed;
+  for (std::size_t li = 0; li < off.size(); ++li) {
+    if (off[li] != cavity_off_[li]) changed.push_back(li);
+  }
+  std::copy(off.begin(), off.end(), cavity_off_.begin());  // in place: the factors hold pointers into it
+  return changed;
 }
 
 // Removes the observations beyond outlier_sigmas (the 2-D error in either
@@ -833,11 +903,15 @@ BundleAdjuster::Rejected BundleAdjuster::RejectOutliers() {
       problem_.RemoveResidualBlock(rb.id);
       gone.insert(rb.id);
       ++rejected.observations;
+      rejected.touched.push_back(rb.landmark);
     } else {
       kept.push_back(rb);
     }
   }
   rejected.landmarks = DropLandmarksWithFewViews(&kept, &gone);
+  rejected.touched.erase(std::remove_if(rejected.touched.begin(), rejected.touched.end(),
+                                        [&](std::size_t li) { return dropped_[li] != 0; }),
+                         rejected.touched.end());
   reprojection_.swap(kept);
   ForgetLabelsOf(gone);
   result_.observations_rejected += static_cast<int>(rejected.observations);
@@ -895,7 +969,7 @@ AdjustmentResult BundleAdjuster::CollectResults(const Pose& x_gM_initial) {
   result_.converged = summary_.termination_type == ceres::CONVERGENCE;
   result_.solver_seconds = solver_seconds_;
   result_.initial_cost = initial_cost_;
-  result_.final_cost = summary_.final_cost;
+  result_.final_cost = final_cost_;
   result_.num_residual_blocks = summary_.num_residual_blocks;
   for (int i = 0; i < K_; ++i) {
     result_.keyframes.push_back(b_.nav[At(i)].keyframe);
@@ -950,11 +1024,33 @@ void BundleAdjuster::CollectLandmarks(const LandmarkCovariances& cov) {
   }
 }
 
+// Every position of a result in g moved by delta (survey_origin.h).
+void ShiftResult(AdjustmentResult& r, const Eigen::Vector3d& delta) {
+  for (Vector6d& x : r.poses) x = ShiftedFrame(x, delta);
+  for (LandmarkEstimate& l : r.landmarks) l.p += delta;
+  r.x_gM = ShiftedFrame(r.x_gM, delta);
+  r.x_gM_initial = ShiftedFrame(r.x_gM_initial, delta);
+}
+
 }  // namespace
 
 AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, const Pose& x_gM_initial,
                                const AdjustmentOptions& o, Progress& progress, const AdjustmentResult* warm) {
   o.Check();
+  const Eigen::Vector3d origin = LocalOrigin(b);
+  if (!origin.isZero()) {
+    // Large coordinates (survey_origin.h): adjusted in g - origin, answered in g.
+    const auto t0 = Clock::now();
+    SurveyBundle local = b;
+    ShiftSurvey(local, -origin);
+    std::optional<AdjustmentResult> local_warm;
+    if (warm) ShiftResult(local_warm.emplace(*warm), -origin);
+    AdjustmentResult r = RunAdjustment(local, mesh, ShiftedFrame(x_gM_initial, -origin), o, progress,
+                                       local_warm ? &*local_warm : nullptr);
+    ShiftResult(r, origin);
+    r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return r;
+  }
   const auto t0 = Clock::now();
   const OpenMpThreads omp_threads(o.num_threads);
   if (b.nav.empty()) throw InputError({b.directory, 0, 0, "nav.csv"}, "the survey has no keyframes to adjust");

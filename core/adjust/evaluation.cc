@@ -138,8 +138,14 @@ AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMes
   }
   if (!true_m.empty()) centroid /= static_cast<double>(true_m.size());
   double raw = 0;
-  for (std::size_t i = 0; i < est_m.size(); ++i) raw += (est_m[i] - true_m[i]).squaredNorm();
-  if (!est_m.empty()) e.landmark_rmse_raw = std::sqrt(raw / static_cast<double>(est_m.size()));
+  for (std::size_t i = 0; i < est_m.size(); ++i) {
+    raw += (est_m[i] - true_m[i]).squaredNorm();
+    e.landmark_mean_error_raw += est_m[i] - true_m[i];
+  }
+  if (!est_m.empty()) {
+    e.landmark_rmse_raw = std::sqrt(raw / static_cast<double>(est_m.size()));
+    e.landmark_mean_error_raw /= static_cast<double>(est_m.size());
+  }
   const Eigen::MatrixXd N = UnobservedMotions(hull_p, hull_n, centroid);
   e.unobservable_dof = static_cast<int>(N.cols());
   AlignAlong(N, centroid, est_m, true_m);

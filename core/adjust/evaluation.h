@@ -33,8 +33,12 @@ struct ObjectDeviation {
 
 struct AdjustmentEvaluation {
   std::size_t landmarks = 0;
-  int unobservable_dof = 0;          // motions of M the surveyed hull does not observe (0..6)
-  double landmark_rmse_raw = 0;      // m, all landmarks, in M, no alignment
+  int unobservable_dof = 0;      // motions of M the surveyed hull does not observe (0..6)
+  double landmark_rmse_raw = 0;  // m, all landmarks, in M, no alignment
+  // m, the mean of estimate - truth in M over the same landmarks, no
+  // alignment: where the map sits as a whole (e.g. slid along a flat bottom,
+  // the direction it leaves free).
+  Eigen::Vector3d landmark_mean_error_raw = Eigen::Vector3d::Zero();
   double landmark_rmse = 0;          // m, all landmarks, in M, gauge-aligned
   double landmark_rmse_hull = 0;     // on the nominal hull
   double landmark_rmse_objects = 0;  // on foreign structure

@@ -20,7 +20,9 @@ namespace hull::adjust {
 using LandmarkJacobian = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 // Calls f(id, J) for each residual block of the parameter block `landmark`
-// (3 values) that evaluates, in the order the problem lists them.
+// (3 values) that evaluates, in the order the problem lists them, at the
+// parameter blocks' current values. Changes nothing in the problem, so
+// different landmarks may be evaluated on different threads at once.
 void ForEachLandmarkJacobian(const ceres::Problem& problem, double* landmark,
                              const std::function<void(ceres::ResidualBlockId, const LandmarkJacobian&)>& f);
 

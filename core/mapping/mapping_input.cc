@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "base/error.h"
+#include "survey/survey_origin.h"
 
 namespace hull {
 namespace {
@@ -29,7 +30,8 @@ void AttachObservations(const SurveyBundle& bundle, const std::unordered_map<std
 MappingInput MappingInputFromAdjustment(const AdjustmentResult& r, const SurveyBundle& bundle) {
   MappingInput in;
   in.source = "adjustment";
-  in.x_gM = Pose::FromVector(r.x_gM);
+  const Eigen::Vector3d to_local = -LocalOrigin(bundle);
+  in.x_gM = Pose::FromVector(ShiftedFrame(r.x_gM, to_local));
   in.camera = bundle.manifest.camera;
   in.model_axes = bundle.manifest.model_axes;
   const Pose x_s_cT = Pose::FromVector(r.x_s_cT);
@@ -47,14 +49,15 @@ MappingInput MappingInputFromAdjustment(const AdjustmentResult& r, const SurveyB
     }
     MappingKeyframe k;
     k.id = r.keyframes[i];
-    k.x_g_cT = Pose::FromVector(r.poses[i]) * bundle.manifest.VehicleToServo(r.servo[i]) * x_s_cT;
+    k.x_g_cT =
+        Pose::FromVector(ShiftedFrame(r.poses[i], to_local)) * bundle.manifest.VehicleToServo(r.servo[i]) * x_s_cT;
     keyframe_index.emplace(k.id, static_cast<int>(in.keyframes.size()));
     in.keyframes.push_back(std::move(k));
   }
   std::unordered_map<std::int64_t, int> landmark_index;
   for (const auto& l : r.landmarks) {
     landmark_index.emplace(l.id, static_cast<int>(in.landmarks.size()));
-    in.landmarks.push_back({l.id, l.p, l.deviation, l.sigma_h});
+    in.landmarks.push_back({l.id, l.p + to_local, l.deviation, l.sigma_h});
   }
   AttachObservations(bundle, keyframe_index, landmark_index, in);
   return in;
@@ -67,7 +70,8 @@ MappingInput MappingInputFromTruth(const SurveyBundle& bundle) {
   const SurveyTruth& t = *bundle.truth;
   MappingInput in;
   in.source = "truth";
-  in.x_gM = Pose::FromVector(t.x_gM);
+  const Eigen::Vector3d to_local = -LocalOrigin(bundle);
+  in.x_gM = Pose::FromVector(ShiftedFrame(t.x_gM, to_local));
   in.camera = bundle.manifest.camera;
   in.model_axes = bundle.manifest.model_axes;
   const Pose x_s_cT = Pose::FromVector(t.x_s_cT);
@@ -75,14 +79,14 @@ MappingInput MappingInputFromTruth(const SurveyBundle& bundle) {
   for (const auto& p : t.poses) {
     MappingKeyframe k;
     k.id = p.keyframe;
-    k.x_g_cT = Pose::FromVector(p.x_gv) * bundle.manifest.VehicleToServo(p.servo) * x_s_cT;
+    k.x_g_cT = Pose::FromVector(ShiftedFrame(p.x_gv, to_local)) * bundle.manifest.VehicleToServo(p.servo) * x_s_cT;
     keyframe_index.emplace(k.id, static_cast<int>(in.keyframes.size()));
     in.keyframes.push_back(std::move(k));
   }
   std::unordered_map<std::int64_t, int> landmark_index;
   for (const auto& l : t.landmarks) {
     landmark_index.emplace(l.landmark, static_cast<int>(in.landmarks.size()));
-    in.landmarks.push_back({l.landmark, l.p, l.deviation});
+    in.landmarks.push_back({l.landmark, l.p + to_local, l.deviation});
   }
   AttachObservations(bundle, keyframe_index, landmark_index, in);
   return in;

@@ -4,6 +4,12 @@
 // hull axes. Built from an adjustment (the normal case) or, for simulated
 // surveys, from the truth (true poses and landmarks with their true
 // deviation, as if adjusted perfectly).
+//
+// "g" here is the survey's local frame, g moved to LocalOrigin(bundle)
+// (survey_origin.h), as in the estimators: a survey in UTM-scale
+// coordinates is mapped with the same numbers as the same survey near g's
+// origin. Nothing the mapping writes is in g (objects, zones and the model
+// are in M, shapes per keyframe).
 #pragma once
 
 #include <cmath>
@@ -20,7 +26,7 @@ namespace hull {
 
 struct MappingLandmark {
   std::int64_t id = 0;
-  Eigen::Vector3d p_g = Eigen::Vector3d::Zero();  // position in g
+  Eigen::Vector3d p_g = Eigen::Vector3d::Zero();  // position in (the local) g
   double deviation = 0;                           // signed distance to the CAD surface (m, positive outside)
   double sigma_h = std::nan("");                  // its standard deviation from the adjustment (m); NaN: unknown
 };
@@ -33,7 +39,7 @@ struct MappingKeyframe {
 
 struct MappingInput {
   std::string source;  // where it came from, e.g. "adjustment" or "truth"
-  Pose x_gM;           // the CAD model in g
+  Pose x_gM;           // the CAD model in (the local) g
   CameraRig camera;    // intrinsics and image size of the top camera
   std::optional<ModelAxes> model_axes;
   std::vector<MappingKeyframe> keyframes;  // in the adjustment's (time) order

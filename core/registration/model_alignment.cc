@@ -10,9 +10,11 @@
 #include <numeric>
 #include <string>
 
+#include "base/csv.h"
 #include "base/error.h"
 #include "geometry/point_index.h"
 #include "registration/model_alignment_internal.h"
+#include "survey/survey_origin.h"
 
 namespace hull {
 namespace alignment_internal {
@@ -46,22 +48,100 @@ double HeadingOf(const HullFrame& h, const Pose& x_gM) {
 
 double AngleDiff(double a, double b) { return std::abs(WrapAngle(a - b)); }
 
+void Deadline::ThrowIfSpent(const std::string& stage) const {
+  if (!(seconds_ > 0)) return;
+  const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (spent <= seconds_) return;
+  throw std::runtime_error("the alignment's time budget of " + FormatDouble(seconds_) + " s (max_seconds) is spent (" +
+                           FormatDouble(std::round(spent)) + " s) at: " + stage +
+                           "; a mesh far larger than the survey, or too many DVL returns?");
+}
+
 Eigen::Vector3d Centroid(const std::vector<Eigen::Vector3d>& pts) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const auto& p : pts) c += p;
   return pts.empty() ? c : Eigen::Vector3d(c / static_cast<double>(pts.size()));
 }
 
+namespace {
+
+// The steps of a face's barycentric sampling grid: its longest edge over `spacing`.
+int GridSteps(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, double spacing) {
+  const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+  return std::max(1, static_cast<int>(std::min(std::ceil(longest / spacing), 1e9)));
+}
+
+// Samples on a face's barycentric grid of n steps: (n + 1)(n + 2) / 2 points.
+double GridSamples(int n) { return 0.5 * (n + 1.0) * (n + 2.0); }
+
+// Calls f(q) for every point of the face's barycentric grid of n steps.
+template <class F>
+void ForEachGridSample(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c, int n, F f) {
+  for (int i = 0; i <= n; ++i) {
+    for (int j = 0; i + j <= n; ++j) f(a + (static_cast<double>(i) * (b - a) + static_cast<double>(j) * (c - a)) / n);
+  }
+}
+
+// A face whose grid holds more samples than this is sampled only around the
+// points near it (SampleLargeFaceNear): a face metres across has a few
+// thousand, one a kilometre across 10^8, and a sliver reaching a vertex
+// 10^6 m away (a stray vertex, a mesh in the wrong units) 10^14.
+constexpr double kMaxFaceGridSamples = 1e6;
+
+// The samples of a large face (a, b, c) within `margin` of the points near
+// it (`candidates`, indices into `points`): an in-plane square grid of
+// `spacing` from a (axes along a->b and across it) over each point's
+// margin window, each grid point once, in grid order, kept when inside the
+// face and within the margin of a point.
+void SampleLargeFaceNear(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c,
+                         const PointIndex& points, const std::vector<std::pair<int, double>>& candidates,
+                         double spacing, double margin, std::vector<Eigen::Vector3d>* out) {
+  const Eigen::Vector3d e1 = b - a, e2 = c - a;
+  const Eigen::Vector3d normal = e1.cross(e2);
+  if (!(normal.norm() > 0) || !(e1.norm() > 0)) return;  // a degenerate face has no area to sample
+  const Eigen::Vector3d n = normal.normalized(), t1 = e1.normalized(), t2 = n.cross(t1);
+  // The face in its plane's coordinates: a = (0, 0), b = (bx, 0), c = (cx, cy).
+  const double bx = e1.norm(), cx = t1.dot(e2), cy = t2.dot(e2);
+  const auto w = static_cast<std::int64_t>(std::ceil(margin / spacing));
+  std::vector<std::pair<std::int64_t, std::int64_t>> cells;
+  for (const auto& [i, d] : candidates) {
+    const Eigen::Vector3d q = points.point(static_cast<std::size_t>(i)) - a;
+    if (std::abs(n.dot(q)) > margin) continue;
+    const auto x0 = static_cast<std::int64_t>(std::floor(t1.dot(q) / spacing));
+    const auto y0 = static_cast<std::int64_t>(std::floor(t2.dot(q) / spacing));
+    for (std::int64_t x = x0 - w; x <= x0 + w + 1; ++x) {
+      for (std::int64_t y = y0 - w; y <= y0 + w + 1; ++y) cells.emplace_back(x, y);
+    }
+  }
+  std::sort(cells.begin(), cells.end());
+  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
+  const double m2 = margin * margin, eps = 1e-9 * bx;
+  for (const auto& [xi, yi] : cells) {
+    const double x = static_cast<double>(xi) * spacing, y = static_cast<double>(yi) * spacing;
+    // Barycentric coordinates of (x, y) in the face: v along c, u along b.
+    const double v = y / cy, u = (x - v * cx) / bx;
+    if (u < -eps || v < -eps || u + v > 1 + eps) continue;
+    const Eigen::Vector3d p = a + x * t1 + y * t2;
+    const auto near = points.NearestOne(p);
+    if (near.first >= 0 && near.second <= m2) out->push_back(p);
+  }
+}
+
+}  // namespace
+
 // Mesh samples within `margin` of any of `near_M` (points in M): faces whose
 // bounding sphere comes within the margin are sampled, then each sample is
-// kept if a point is within the margin.
+// kept if a point is within the margin. A large face is sampled only around
+// the points near it (SampleLargeFaceNear), so the work grows with the area
+// near the points, never with a face's size.
 std::vector<Eigen::Vector3d> SampleNear(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& near_M,
-                                        double spacing, double margin) {
+                                        double spacing, double margin, const Deadline& deadline) {
   std::vector<Eigen::Vector3d> out;
   if (near_M.empty()) return out;
   const PointIndex index(near_M);
   const double m2 = margin * margin;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    if (f % 4096 == 0) deadline.ThrowIfSpent("sampling the mesh near the DVL returns");
     const Face& face = mesh.faces[f];
     const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(face[0])];
     const Eigen::Vector3d& b = mesh.vertices[static_cast<std::size_t>(face[1])];
@@ -70,15 +150,15 @@ std::vector<Eigen::Vector3d> SampleNear(const TriangleMesh& mesh, const std::vec
     const double r = std::max({(a - centre).norm(), (b - centre).norm(), (c - centre).norm()});
     const auto nn = index.Nearest(centre, 1);
     if (nn.empty() || nn[0].second > (r + margin) * (r + margin)) continue;
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
-    for (int i = 0; i <= n; ++i) {
-      for (int j = 0; i + j <= n; ++j) {
-        const Eigen::Vector3d q = a + (static_cast<double>(i) * (b - a) + static_cast<double>(j) * (c - a)) / n;
-        const auto near = index.Nearest(q, 1);
-        if (!near.empty() && near[0].second <= m2) out.push_back(q);
-      }
+    const int n = GridSteps(a, b, c, spacing);
+    if (GridSamples(n) > kMaxFaceGridSamples) {
+      SampleLargeFaceNear(a, b, c, index, index.Within(centre, r + margin, false), spacing, margin, &out);
+      continue;
     }
+    ForEachGridSample(a, b, c, n, [&](const Eigen::Vector3d& q) {
+      const auto near = index.Nearest(q, 1);
+      if (!near.empty() && near[0].second <= m2) out.push_back(q);
+    });
   }
   return out;
 }
@@ -189,12 +269,14 @@ void ConstrainUpdate(const MeshIndex& index, const std::vector<Eigen::Vector3d>&
 // GICP of the returns (source, g) to the mesh samples near them (target, M)
 // from x_gM0 (the GICP transform is x_Mg), then the degeneracy guard.
 Refined Refine(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM0,
-               const ModelAlignmentOptions& o) {
+               const ModelAlignmentOptions& o, const Deadline& deadline) {
   const std::vector<Eigen::Vector3d> target =
-      SampleNear(index.mesh(), ToModel(pts_g, x_gM0), o.sample_spacing, o.sample_margin);
+      SampleNear(index.mesh(), ToModel(pts_g, x_gM0), o.sample_spacing, o.sample_margin, deadline);
   Refined r;
   r.target_points = target.size();
+  deadline.ThrowIfSpent("starting GICP");
   r.gicp = AlignGicp(pts_g, target, x_gM0.Inverse(), o.gicp);
+  deadline.ThrowIfSpent("GICP");
   const bool usable = r.gicp.status == GicpStatus::kConverged || r.gicp.status == GicpStatus::kMaxIterations;
   r.x_gM = usable ? r.gicp.transform.Inverse() : x_gM0;
   if (usable && o.min_observability > 0) {
@@ -272,6 +354,7 @@ void ModelAlignmentOptions::Check() const {
     throw OptionError("depth_window", "must be >= 0 (s; 0: no depth correction)");
   }
   if (!(max_beam_range > 0)) throw OptionError("max_beam_range", "must be positive (m)");
+  if (!(max_seconds >= 0 && std::isfinite(max_seconds))) throw OptionError("max_seconds", "must be >= 0 (s; 0: none)");
   if (!(anchor_spacing > 0 && std::isfinite(anchor_spacing)))
     throw OptionError("anchor_spacing", "must be positive (m)");
   if (!(heading_step_deg >= 0 && heading_step_deg < 360)) {
@@ -297,20 +380,33 @@ std::optional<Pose> ModelPoseGuess(const SurveyBundle& bundle) {
   return Pose::FromVector(*bundle.manifest.model_pose_guess);
 }
 
-std::vector<Eigen::Vector3d> SampleMeshSurface(const TriangleMesh& mesh, double spacing) {
+std::vector<Eigen::Vector3d> SampleMeshSurface(const TriangleMesh& mesh, double spacing, double max_samples) {
   std::vector<Eigen::Vector3d> out;
   if (!(spacing > 0)) throw std::invalid_argument("SampleMeshSurface: spacing must be positive");
+  double total = 0, largest = 0;
+  std::size_t largest_face = 0;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    const Face& face = mesh.faces[f];
+    const int n =
+        GridSteps(mesh.vertices[static_cast<std::size_t>(face[0])], mesh.vertices[static_cast<std::size_t>(face[1])],
+                  mesh.vertices[static_cast<std::size_t>(face[2])], spacing);
+    total += GridSamples(n);
+    if (n * spacing > largest) largest = n * spacing, largest_face = f;
+  }
+  if (total > max_samples) {
+    throw InputError({"mesh", 0, 0, "face " + std::to_string(largest_face)},
+                     "sampling the surface every " + FormatDouble(spacing) + " m would take " + FormatDouble(total) +
+                         " points (this face is " + FormatDouble(largest) +
+                         " m across): a vertex far from the rest of the mesh, or a mesh in the wrong units? Check "
+                         "the mesh, or give the survey a model_pose_guess so that no search over the whole hull "
+                         "is needed");
+  }
+  out.reserve(static_cast<std::size_t>(total));
   for (const Face& face : mesh.faces) {
     const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(face[0])];
     const Eigen::Vector3d& b = mesh.vertices[static_cast<std::size_t>(face[1])];
     const Eigen::Vector3d& c = mesh.vertices[static_cast<std::size_t>(face[2])];
-    const double longest = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
-    const int n = std::max(1, static_cast<int>(std::ceil(longest / spacing)));
-    for (int i = 0; i <= n; ++i) {
-      for (int j = 0; i + j <= n; ++j) {
-        out.push_back(a + (static_cast<double>(i) * (b - a) + static_cast<double>(j) * (c - a)) / n);
-      }
-    }
+    ForEachGridSample(a, b, c, GridSteps(a, b, c, spacing), [&](const Eigen::Vector3d& q) { out.push_back(q); });
   }
   return out;
 }
@@ -327,10 +423,36 @@ std::vector<double> DvlRangeResiduals(const std::vector<DvlPoint>& returns, cons
   return out;
 }
 
-ModelAlignment AlignDvlToModel(const SurveyBundle& bundle, const TriangleMesh& mesh_in_M,
-                               std::optional<Pose> initial_x_gM, const ModelAlignmentOptions& o, Progress& progress) {
-  o.Check();
-  if (mesh_in_M.empty()) throw std::invalid_argument("AlignDvlToModel: the mesh has no faces");
+namespace {
+
+// The per-beam range residuals before and after, their RMS, and the
+// returns' truncated surface RMS, into `out`.
+void RecordResiduals(const std::vector<DvlPoint>& returns, const std::vector<Eigen::Vector3d>& pts_g,
+                     const MeshIndex& index, const ModelAlignmentOptions& o, ModelAlignment* out) {
+  const std::vector<double> before = DvlRangeResiduals(returns, index, out->initial_x_gM, o.max_beam_range);
+  const std::vector<double> after = DvlRangeResiduals(returns, index, out->x_gM, o.max_beam_range);
+  double sb = 0, sa = 0;
+  out->residuals.reserve(returns.size());
+  for (std::size_t i = 0; i < returns.size(); ++i) {
+    out->residuals.push_back({returns[i].keyframe, returns[i].beam, returns[i].range, before[i], after[i]});
+    if (std::isfinite(before[i]) && std::isfinite(after[i])) {
+      sb += before[i] * before[i];
+      sa += after[i] * after[i];
+      ++out->residual_beams;
+    }
+  }
+  if (out->residual_beams > 0) {
+    out->residual_rms_before = std::sqrt(sb / static_cast<double>(out->residual_beams));
+    out->residual_rms_after = std::sqrt(sa / static_cast<double>(out->residual_beams));
+  }
+  out->surface_rms_before = TruncatedSurfaceRmsParallel(index, pts_g, out->initial_x_gM, o.score_truncation);
+  out->surface_rms_after = TruncatedSurfaceRmsParallel(index, pts_g, out->x_gM, o.score_truncation);
+}
+
+// The alignment of a survey in its local frame (LocalOrigin(bundle) is zero).
+ModelAlignment AlignLocalSurvey(const SurveyBundle& bundle, const TriangleMesh& mesh_in_M,
+                                std::optional<Pose> initial_x_gM, const ModelAlignmentOptions& o, Progress& progress) {
+  const Deadline deadline(o.max_seconds);
   TriangleMesh mesh = mesh_in_M;
   if (mesh.face_normals.size() != mesh.faces.size()) mesh.ComputeNormals();
   const MeshIndex index(mesh);
@@ -354,14 +476,14 @@ ModelAlignment AlignDvlToModel(const SurveyBundle& bundle, const TriangleMesh& m
   if (initial_x_gM) {
     out.initial_x_gM = *initial_x_gM;
     progress.Update(0.1, "aligning the DVL returns to the model (GICP)");
-    r = Refine(index, pts_g, out.initial_x_gM, o);
+    r = Refine(index, pts_g, out.initial_x_gM, o, deadline);
   } else {
     // The winner's placement before any refinement is the "before" of the
     // residuals; the final GICP (full target) starts from its refined pose.
-    const CoarseResult c = CoarseSearch(bundle, mesh, index, returns, pts_g, o, progress, &out.coarse);
+    const CoarseResult c = CoarseSearch(bundle, mesh, index, returns, pts_g, o, progress, deadline, &out.coarse);
     out.initial_x_gM = c.start;
     progress.Update(0.7, "aligning the DVL returns to the model (GICP)");
-    r = Refine(index, pts_g, c.candidate, o);
+    r = Refine(index, pts_g, c.candidate, o, deadline);
   }
   out.x_gM = r.x_gM;
   out.gicp = r.gicp;
@@ -371,25 +493,28 @@ ModelAlignment AlignDvlToModel(const SurveyBundle& bundle, const TriangleMesh& m
   progress.ThrowIfCancelled();
 
   progress.Update(0.9, "DVL range residuals");
-  const std::vector<double> before = DvlRangeResiduals(returns, index, out.initial_x_gM, o.max_beam_range);
-  const std::vector<double> after = DvlRangeResiduals(returns, index, out.x_gM, o.max_beam_range);
-  double sb = 0, sa = 0;
-  out.residuals.reserve(returns.size());
-  for (std::size_t i = 0; i < returns.size(); ++i) {
-    out.residuals.push_back({returns[i].keyframe, returns[i].beam, returns[i].range, before[i], after[i]});
-    if (std::isfinite(before[i]) && std::isfinite(after[i])) {
-      sb += before[i] * before[i];
-      sa += after[i] * after[i];
-      ++out.residual_beams;
-    }
-  }
-  if (out.residual_beams > 0) {
-    out.residual_rms_before = std::sqrt(sb / static_cast<double>(out.residual_beams));
-    out.residual_rms_after = std::sqrt(sa / static_cast<double>(out.residual_beams));
-  }
-  out.surface_rms_before = TruncatedSurfaceRmsParallel(index, pts_g, out.initial_x_gM, o.score_truncation);
-  out.surface_rms_after = TruncatedSurfaceRmsParallel(index, pts_g, out.x_gM, o.score_truncation);
+  RecordResiduals(returns, pts_g, index, o, &out);
   progress.Update(1.0, "aligned");
+  return out;
+}
+
+}  // namespace
+
+ModelAlignment AlignDvlToModel(const SurveyBundle& bundle, const TriangleMesh& mesh_in_M,
+                               std::optional<Pose> initial_x_gM, const ModelAlignmentOptions& o, Progress& progress) {
+  o.Check();
+  if (mesh_in_M.empty()) throw std::invalid_argument("AlignDvlToModel: the mesh has no faces");
+  const Eigen::Vector3d origin = LocalOrigin(bundle);
+  if (origin.isZero()) return AlignLocalSurvey(bundle, mesh_in_M, initial_x_gM, o, progress);
+  // Large coordinates (survey_origin.h): aligned in g - origin, answered in g.
+  SurveyBundle local = bundle;
+  ShiftSurvey(local, -origin);
+  if (initial_x_gM) initial_x_gM = ShiftedFrame(*initial_x_gM, -origin);
+  ModelAlignment out = AlignLocalSurvey(local, mesh_in_M, initial_x_gM, o, progress);
+  out.x_gM = ShiftedFrame(out.x_gM, origin);
+  out.initial_x_gM = ShiftedFrame(out.initial_x_gM, origin);
+  if (out.coarse.ran) out.coarse.start = ShiftedFrame(out.coarse.start, origin);
+  out.gicp.transform = out.gicp.transform * Pose(Eigen::Quaterniond::Identity(), -origin);  // x_Mg
   return out;
 }
 

@@ -96,6 +96,11 @@ struct ModelAlignmentOptions {
   // DVL range residuals: a beam is cast at most this far (m); a beam that
   // misses the mesh within it has no predicted range (residual NaN).
   double max_beam_range = 30.0;
+  // Wall-time budget of the whole alignment (s): the coarse search, the
+  // sampling of the mesh and every GICP run check it between their steps
+  // and stop with an error naming the stage when it is spent (each GICP
+  // stage is also bounded by gicp.max_iterations). 0: no budget.
+  double max_seconds = 600.0;
 
   // ---- coarse search (only when no initial x_gM is given) ------------------
   // Anchors: the mesh surface sampled about every anchor_spacing (m); each
@@ -201,6 +206,9 @@ std::vector<double> DvlRangeResiduals(const std::vector<DvlPoint>& returns, cons
 
 // Points on the surface of the mesh, about `spacing` apart on every face (a
 // barycentric grid per face, so shared edges are sampled by both faces).
-std::vector<Eigen::Vector3d> SampleMeshSurface(const TriangleMesh& mesh, double spacing);
+// Throws InputError naming the largest face when that would take more than
+// max_samples points (a stray vertex far from the rest, a mesh in the wrong
+// units), before allocating any.
+std::vector<Eigen::Vector3d> SampleMeshSurface(const TriangleMesh& mesh, double spacing, double max_samples = 2e7);
 
 }  // namespace hull

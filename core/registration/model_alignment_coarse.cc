@@ -96,13 +96,14 @@ class CoarseSearcher {
  public:
   CoarseSearcher(const SurveyBundle& bundle, const TriangleMesh& mesh, const MeshIndex& index,
                  const std::vector<DvlPoint>& returns, const std::vector<Eigen::Vector3d>& pts_g,
-                 const ModelAlignmentOptions& o, Progress& progress)
+                 const ModelAlignmentOptions& o, Progress& progress, const Deadline& deadline)
       : bundle_(bundle),
         mesh_(mesh),
         index_(index),
         pts_g_(pts_g),
         o_(o),
         progress_(progress),
+        deadline_(deadline),
         hf_(HullFrameOf(bundle.manifest)),
         fp_(FootprintOf(bundle, returns, pts_g)) {}
 
@@ -133,6 +134,7 @@ class CoarseSearcher {
   const std::vector<Eigen::Vector3d>& pts_g_;
   const ModelAlignmentOptions& o_;
   Progress& progress_;
+  const Deadline& deadline_;
   const HullFrame hf_;
   const Footprint fp_;
   std::vector<Eigen::Vector3d> anchor_point_, anchor_normal_;
@@ -187,6 +189,7 @@ void CoarseSearcher::ScoreHypotheses() {
     hyps_[i].score = TruncatedSurfaceRms(index_, sub_, hyps_[i].x_gM, o_.score_truncation);
   });
   progress_.ThrowIfCancelled();
+  deadline_.ThrowIfSpent("the coarse search's scoring of " + std::to_string(hyps_.size()) + " placements");
   std::sort(hyps_.begin(), hyps_.end(), [](const Hypothesis& a, const Hypothesis& b) { return a.score < b.score; });
 }
 
@@ -246,6 +249,7 @@ void CoarseSearcher::RefineByIcp() {
     c.heading = HeadingOf(hf_, c.x_gM);
   });
   progress_.ThrowIfCancelled();
+  deadline_.ThrowIfSpent("the coarse search's point-to-plane ICP");
   std::stable_sort(stage2_.begin(), stage2_.end(), [](const Candidate& a, const Candidate& b) {
     if (a.prior != b.prior) return a.prior;  // the prior pick stays first
     return a.score < b.score;
@@ -267,7 +271,8 @@ void CoarseSearcher::RefineByGicp(CoarseSearchReport* report) {
         0.15 + 0.5 * static_cast<double>(k) / static_cast<double>(cands_.size()),
         "coarse search: GICP of placement " + std::to_string(k + 1) + " of " + std::to_string(cands_.size()));
     Candidate& c = cands_[k];
-    c.refined = Refine(index_, pts_g_, c.x_gM, light);
+    deadline_.ThrowIfSpent("the coarse search's GICP of placement " + std::to_string(k + 1));
+    c.refined = Refine(index_, pts_g_, c.x_gM, light, deadline_);
     c.score = TruncatedSurfaceRmsParallel(index_, pts_g_, c.refined.x_gM, o_.score_truncation);
     c.landing = c.refined.x_gM.Inverse() * fp_.centroid;
     c.heading = HeadingOf(hf_, c.refined.x_gM);
@@ -309,8 +314,9 @@ CoarseResult CoarseSearcher::PickWinner(CoarseSearchReport* report) const {
 // The coarse search (see CoarseSearchReport and ModelAlignmentOptions).
 CoarseResult CoarseSearch(const SurveyBundle& bundle, const TriangleMesh& mesh, const MeshIndex& index,
                           const std::vector<DvlPoint>& returns, const std::vector<Eigen::Vector3d>& pts_g,
-                          const ModelAlignmentOptions& o, Progress& progress, CoarseSearchReport* report) {
-  CoarseSearcher search(bundle, mesh, index, returns, pts_g, o, progress);
+                          const ModelAlignmentOptions& o, Progress& progress, const Deadline& deadline,
+                          CoarseSearchReport* report) {
+  CoarseSearcher search(bundle, mesh, index, returns, pts_g, o, progress, deadline);
   search.MakeHypotheses(report);
   search.ScoreHypotheses();
   search.FindTieBreakReference();

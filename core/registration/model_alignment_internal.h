@@ -4,9 +4,11 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "base/progress.h"
@@ -17,6 +19,19 @@ namespace hull::alignment_internal {
 
 constexpr double kDeg = M_PI / 180.0;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The alignment's wall-time budget (ModelAlignmentOptions::max_seconds),
+// checked between the steps of every stage.
+class Deadline {
+ public:
+  explicit Deadline(double seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
+  // Throws std::runtime_error naming `stage` and the budget when it is spent.
+  void ThrowIfSpent(const std::string& stage) const;
+
+ private:
+  double seconds_;  // <= 0: no budget
+  std::chrono::steady_clock::time_point start_;
+};
 
 // Hull axes in M, orthonormalised: forward f, up u and port p = u x f.
 struct HullFrame {
@@ -42,7 +57,7 @@ double AngleDiff(double a, double b);
 Eigen::Vector3d Centroid(const std::vector<Eigen::Vector3d>& pts);
 
 std::vector<Eigen::Vector3d> SampleNear(const TriangleMesh& mesh, const std::vector<Eigen::Vector3d>& near_M,
-                                        double spacing, double margin);
+                                        double spacing, double margin, const Deadline& deadline);
 
 std::vector<Eigen::Vector3d> ToModel(const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM);
 
@@ -56,7 +71,7 @@ void ConstrainUpdate(const MeshIndex& index, const std::vector<Eigen::Vector3d>&
                      double min_observability, double truncation, Refined* r);
 
 Refined Refine(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM0,
-               const ModelAlignmentOptions& o);
+               const ModelAlignmentOptions& o, const Deadline& deadline);
 
 Pose PointToPlaneIcp(const MeshIndex& index, const std::vector<Eigen::Vector3d>& pts_g, const Pose& x_gM,
                      int iterations, double truncation);
@@ -69,6 +84,7 @@ struct CoarseResult {
 // The coarse search (see CoarseSearchReport and ModelAlignmentOptions).
 CoarseResult CoarseSearch(const SurveyBundle& bundle, const TriangleMesh& mesh, const MeshIndex& index,
                           const std::vector<DvlPoint>& returns, const std::vector<Eigen::Vector3d>& pts_g,
-                          const ModelAlignmentOptions& o, Progress& progress, CoarseSearchReport* report);
+                          const ModelAlignmentOptions& o, Progress& progress, const Deadline& deadline,
+                          CoarseSearchReport* report);
 
 }  // namespace hull::alignment_internal

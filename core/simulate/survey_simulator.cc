@@ -21,6 +21,7 @@
 #include "simulate/true_scene.h"
 #include "survey/survey_images.h"
 #include "survey/survey_io.h"
+#include "survey/survey_origin.h"
 
 namespace hull {
 namespace {
@@ -29,6 +30,12 @@ constexpr double kDeg = M_PI / 180.0;
 
 void SurveySimulationOptions::Check() const {
   hull_form.Check();
+  if (!(shift.allFinite() && shift.z() == 0 && shift.cwiseAbs().maxCoeff() <= 1e7)) {
+    throw OptionError("shift", "must be finite, horizontal (z 0) and at most 1e7 m (the survey contract's bound)");
+  }
+  if (!shift.isZero() && images) {
+    throw OptionError("shift", "is for surveys without images (the renderer is not checked at large coordinates)");
+  }
   if (!(mesh_scale > 0)) throw OptionError("mesh_scale", "must be positive");
   if (forward.norm() < 1e-9 || up.norm() < 1e-9 || std::abs(forward.normalized().dot(up.normalized())) > 0.1) {
     throw OptionError("forward/up", "must be non-zero and perpendicular");
@@ -543,6 +550,7 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
     b.images = std::move(listing);
     out.imaging = o.imaging;
   }
+  if (!o.shift.isZero()) ShiftSurvey(b, o.shift);
   progress.Update(1.0, "simulated " + std::to_string(K) + " keyframes, " + std::to_string(b.features.size()) +
                            " observations of " + std::to_string(b.truth->landmarks.size()) + " landmarks");
   return out;

@@ -87,6 +87,11 @@ struct SurveySimulationOptions {
   // The second survey of a pair: the placed objects changed (fouling_changes.h).
   FoulingChanges changes;
   bool write_landmarks = false;  // landmarks.csv with noisy initial positions
+  // The frame g moved: every position in g (nav, landmarks.csv, the model
+  // pose guess, the truth) this far from where the survey is simulated (m;
+  // x east, y north, z 0: depth keeps its meaning), as surveys in UTM
+  // coordinates arrive (ShiftSurvey, survey_origin.h). Not with images.
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
 
   // Camera images (bundle version 2): rendered when the bundle is written.
   bool images = false;

@@ -2,13 +2,16 @@
 // on simulated surveys with truth, and its building blocks.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "base/error.h"
 #include "base/progress.h"
 #include "geometry/point_index.h"
 #include "registration/model_alignment.h"
+#include "registration/model_alignment_internal.h"
 #include "simulate/survey_simulator.h"
 #include "support/test_meshes.h"
 
@@ -269,6 +272,80 @@ TEST(ModelAlignment, RangeResidualIsPredictedMinusMeasured) {
   EXPECT_TRUE(std::isnan(r[1]));
   // Beyond max_beam_range there is no prediction either.
   EXPECT_TRUE(std::isnan(DvlRangeResiduals({hit}, index, x_gM, 1.0)[0]));
+}
+
+// Issue 23.3/5: a mesh with one vertex 10^6 m away (a long sliver
+// tetrahedron: a stray vertex, a mesh in the wrong units) used to keep GICP's
+// target sampling busy past 300 s (5 cm samples over faces 10^6 m across).
+TriangleMesh SliverTetrahedron() {
+  TriangleMesh m;
+  m.vertices = {{0, 0, 0}, {10, 0, 0}, {0, 10, 0}, {1e6, 0, -1}};
+  m.faces = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  m.ComputeNormals();
+  return m;
+}
+
+TEST(ModelAlignment, AVertexFarAwayEndsQuicklyWithAResultOrAClearError) {
+  NullProgress np;
+  const TriangleMesh sliver = SliverTetrahedron();
+  const auto t0 = std::chrono::steady_clock::now();
+  // From the guess: the faces are sampled only near the returns.
+  const ModelAlignment a = AlignDvlToModel(Demo().bundle, sliver, ModelPoseGuess(Demo().bundle), {}, np);
+  EXPECT_TRUE(a.x_gM.translation().allFinite());
+  EXPECT_LT(a.target_points, 2000000u);
+  // Without a guess: the coarse search's anchors over the whole surface are refused, naming the face.
+  try {
+    AlignDvlToModel(Demo().bundle, sliver, std::nullopt, {}, np);
+    ADD_FAILURE() << "the coarse search over a 10^6 m face should be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("face"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("m across"), std::string::npos) << e.what();
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0);
+}
+
+TEST(ModelAlignment, ALargeFaceIsSampledNearTheReturnsAsAFineGridWould) {
+  // One 2 km square (two faces, 10^9 grid samples each at 5 cm) and returns
+  // over a few metres of it: the samples near them, as dense as a grid's.
+  TriangleMesh plane;
+  plane.vertices = {{-1000, -1000, 0}, {1000, -1000, 0}, {1000, 1000, 0}, {-1000, 1000, 0}};
+  plane.faces = {{0, 1, 2}, {0, 2, 3}};
+  plane.ComputeNormals();
+  std::vector<Eigen::Vector3d> near;
+  for (int i = 0; i < 20; ++i) near.emplace_back(0.2 * i, 0.1 * i, 0.3);
+  const alignment_internal::Deadline none(0);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto samples = alignment_internal::SampleNear(plane, near, 0.05, 1.0, none);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  const PointIndex index(samples);
+  // Every point of the plane within 0.9 m of a return has a sample within a grid step.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.9, 0.9);
+  for (int k = 0; k < 200; ++k) {
+    const Eigen::Vector3d& p = near[static_cast<std::size_t>(k % 20)];
+    const Eigen::Vector3d q(p.x() + u(rng) * 0.5, p.y() + u(rng) * 0.5, 0);
+    EXPECT_LT(std::sqrt(index.NearestOne(q).second), 0.05) << q.transpose();
+  }
+  for (const Eigen::Vector3d& s : samples) {
+    EXPECT_NEAR(s.z(), 0, 1e-9);
+    double d = 1e9;
+    for (const Eigen::Vector3d& p : near) d = std::min(d, (s - p).norm());
+    EXPECT_LE(d, 1.0 + 1e-9);
+  }
+}
+
+TEST(ModelAlignment, ASpentTimeBudgetStopsWithAMessageNamingTheStage) {
+  NullProgress np;
+  ModelAlignmentOptions o;
+  o.max_seconds = 1e-9;
+  try {
+    AlignDvlToModel(Demo().bundle, Demo().cad, ModelPoseGuess(Demo().bundle), o, np);
+    ADD_FAILURE() << "a spent budget should stop the alignment";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("time budget"), std::string::npos) << e.what();
+  }
+  o.max_seconds = -1;
+  EXPECT_THROW(o.Check(), OptionError);
 }
 
 }  // namespace
