@@ -362,7 +362,7 @@ class BundleAdjuster {
   void RecordDvlResiduals(bool initial);
   ceres::Solver::Options SolverOptions();
   void ThrowIfSolveFailed(const Observer& observer, const ceres::Solver::Summary& summary);
-  std::vector<std::size_t> CavityStep();
+  std::vector<std::size_t> CavityStep(const std::vector<std::size_t>* only = nullptr);
   std::size_t LocalSolveLimit() const;
   void SolveLandmarkAlone(std::size_t li);
   struct Rejected {
@@ -781,9 +781,10 @@ void BundleAdjuster::Solve() {
   so.callbacks.push_back(&observer);
   progress_.Update(0.1, std::string(SurfaceModelName(o_.model)) + " adjustment: solving");
   dropped_.assign(s_.landmark.size(), 0);
-  std::vector<std::size_t> touched;  // empty: solve the whole problem
+  std::vector<std::size_t> touched;  // by the last E-step and rejection
   for (int round = 0;; ++round) {
-    if (round == 0 || touched.size() > LocalSolveLimit()) {
+    const bool whole = round == 0 || touched.size() > LocalSolveLimit();
+    if (whole) {
       observer.set_iteration_offset(result_.iterations.empty() ? 0 : result_.iterations.back().iteration);
       ceres::Solve(so, &problem_, &summary_);
       if (o_.verbose) std::printf("%s\n", summary_.FullReport().c_str());
@@ -799,7 +800,7 @@ void BundleAdjuster::Solve() {
       eo.num_threads = num_threads_;
       problem_.Evaluate(eo, &final_cost_, nullptr, nullptr, nullptr);
     }
-    const std::vector<std::size_t> relabelled = CavityStep();
+    const std::vector<std::size_t> relabelled = CavityStep(whole ? nullptr : &touched);
     const Rejected rejected = round < o_.rejection_rounds ? RejectOutliers() : Rejected{};
     touched = rejected.touched;
     touched.insert(touched.end(), relabelled.begin(), relabelled.end());
@@ -862,16 +863,18 @@ void BundleAdjuster::SolveLandmarkAlone(std::size_t li) {
 // The E-step by the cavity estimate (cavity_label.h, CavityLabelOff) over
 // every landmark still in the problem, on the adjustment's threads (each
 // landmark is judged on its own and nothing in the problem changes until
-// every judgement is in); returns the landmarks whose label changed.
-std::vector<std::size_t> BundleAdjuster::CavityStep() {
+// every judgement is in); returns the landmarks whose label changed. With
+// `only`, those landmarks alone: after they were solved again alone, every
+// other landmark's cavity estimate is what the last E-step found.
+std::vector<std::size_t> BundleAdjuster::CavityStep(const std::vector<std::size_t>* only) {
   if (!cavity_labels_ || label_rounds_ >= o_.label_rounds) return {};
   ++label_rounds_;
   const Pose x_gM_now = s_.ModelPose();
   std::vector<char> off(cavity_off_);  // the factors read cavity_off_: changed once all are judged
-  const auto n = static_cast<std::int64_t>(s_.landmark.size());
+  const auto n = static_cast<std::int64_t>(only ? only->size() : s_.landmark.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(num_threads_)
   for (std::int64_t i = 0; i < n; ++i) {
-    const auto li = static_cast<std::size_t>(i);
+    const std::size_t li = only ? (*only)[static_cast<std::size_t>(i)] : static_cast<std::size_t>(i);
     if (dropped_[li]) continue;
     const Eigen::Vector3d l(s_.landmark[li][0], s_.landmark[li][1], s_.landmark[li][2]);
     const double h = adjust::SurfaceDeviation(index_, x_gM_now, l, o_.lookup);
