@@ -34,6 +34,7 @@
 #include "inspection_window.h"
 #include "mapping/mapper.h"
 #include "mosaic/mosaic_io.h"
+#include "results/adjustment_files.h"
 #include "simulate/survey_simulator.h"
 #include "synthetic_survey.h"
 #include "ui/controllers/mosaic_controller.h"
