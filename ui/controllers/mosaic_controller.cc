@@ -30,6 +30,7 @@ namespace fs = std::filesystem;
 struct MosaicJobInput {
   std::shared_ptr<const SurveyBundle> bundle;
   std::string bundle_path, mesh_path, out;
+  bool force = false;  // into a folder of other files (the user confirmed)
   std::shared_ptr<const FrontEndResult> front_end;
   std::shared_ptr<const ModelAlignment> alignment;
   std::shared_ptr<const AdjustmentRun> adjustment;
@@ -76,7 +77,7 @@ MosaicJobResult RunMosaicJob(const MosaicJobInput& in, Progress& progress) {
   }();
   progress.Update(0.0, "checking the results folder " + out.string());
   // A new or empty folder, or a results folder of this survey.
-  CheckResultsFolder(OutputFolder{out.string(), false});
+  CheckResultsFolder(OutputFolder{out.string(), in.force});
   CheckResultsFolderOfSurvey(out.string(), in.bundle_path);
   CheckImagesPresent(*in.bundle);
   std::unique_ptr<TrueScene> truth;
@@ -119,7 +120,7 @@ MosaicJobResult RunMosaicJob(const MosaicJobInput& in, Progress& progress) {
   ResultsRun run = NewResultsRun("hullinspect: Build photomosaic");
   run.AddSurvey("bundle", in.bundle_path);
   run.AddFile("mesh", in.mesh_path);
-  WriteResultsFolder(OutputFolder{out.string(), false}, run, [&](const std::string& tmp) {
+  WriteResultsFolder(OutputFolder{out.string(), in.force}, run, [&](const std::string& tmp) {
     WritePipelineResult(pin, pr, tmp, out.string());
     WriteMosaic(r, (fs::path(tmp) / "mosaic").string());
   });
@@ -180,7 +181,7 @@ bool MosaicController::busy() const { return jobs_->IsBusy(kMosaicJob); }
 
 void MosaicController::Cancel() { jobs_->Cancel(kMosaicJob); }
 
-void MosaicController::Build(const QString& results) {
+void MosaicController::Build(const QString& results, bool force) {
   const QString why = Unavailable();
   if (!why.isEmpty()) {
     emit failed(QStringLiteral("Cannot build the photomosaic"), why);
@@ -196,6 +197,7 @@ void MosaicController::Build(const QString& results) {
   in.bundle_path = Native(session_->survey()->path);
   in.mesh_path = Native(session_->mesh()->path);
   in.out = Native(last_folder_);
+  in.force = force;
   in.front_end = session_->frontEnd();
   in.alignment = session_->alignment();
   in.adjustment = session_->adjustment();

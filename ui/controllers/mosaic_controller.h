@@ -42,9 +42,11 @@ class MosaicController : public QObject {
   QString Unavailable() const;
   bool CanBuild() const { return Unavailable().isEmpty(); }
   // Builds the mosaic into `results` (created when it does not exist).
+  // A folder holding files HullInspect did not write is refused unless
+  // `force` (the user confirmed: their files are kept, none replaced).
   // Refusals (Unavailable) go through failed(); errors of the job through
   // the JobRunner's jobFailed.
-  void Build(const QString& results);
+  void Build(const QString& results, bool force = false);
   void Cancel();
   bool busy() const;
   // The results folder of the last build asked for ("" : none yet).

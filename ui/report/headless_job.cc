@@ -68,6 +68,9 @@ int RunDemo(const HeadlessCommand& c) {
   source.demo = true;
   PipelineOptions options;
   options.compare_models = true;  // the report shows the three models side by side
+  // As before the results folder: its parent folders are made when missing.
+  const QString parent = QFileInfo(QFileInfo(c.out).absoluteFilePath()).absolutePath();
+  if (!QDir().mkpath(parent)) throw std::runtime_error("cannot create the folder " + Native(parent));
   StderrProgress progress("demo: simulation, pipeline and mapping");
   ReportFiles files;
   double report_seconds = 0;
