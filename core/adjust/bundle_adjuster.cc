@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <memory>
 #include <memory_resource>
+#include <optional>
 #include <set>
 #include <thread>
 #include <unordered_map>
@@ -267,6 +268,688 @@ class OpenMpThreads {
   int saved_;
 };
 
+// The noise of each factor family: the option's override, else the survey's.
+struct FactorSigmas {
+  double pixel, dvl_range, depth, roll_pitch, servo, model_pose;
+};
+
+FactorSigmas SigmasOf(const AdjustmentOptions& o, const NoiseModel& nz) {
+  return {Or(o.pixel_sigma, nz.pixel_sigma), Or(o.dvl_range_sigma, nz.dvl_range_sigma),
+          Or(o.depth_sigma, nz.depth_sigma), Or(o.roll_pitch_sigma, nz.roll_pitch_sigma),
+          Or(o.servo_sigma, nz.servo_sigma), Or(o.model_pose_sigma, nz.model_pose_sigma)};
+}
+
+// A reprojection residual block, with the landmark (its index in State) and
+// the keyframe it ties: what the outlier rejection judges.
+struct ReprojectionBlock {
+  ceres::ResidualBlockId id;
+  std::size_t landmark;
+  std::int64_t keyframe;
+};
+
+// The adjustment as stages (COLMAP's BundleAdjuster is the model): the
+// initial state (vehicle states, landmarks, the model pose's pivot), the
+// problem (one Add...ToProblem per factor family), the solve rounds with the
+// outlier rejection and the cavity label step, and the result. RunAdjustment
+// calls them in that order; each stage fills the members the next reads.
+class BundleAdjuster {
+ public:
+  BundleAdjuster(const SurveyBundle& b, const MeshIndex& index, const AdjustmentOptions& o, Progress& progress)
+      : b_(b),
+        man_(b.manifest),
+        index_(index),
+        o_(o),
+        progress_(progress),
+        sigma_(SigmasOf(o, b.manifest.noise)),
+        kf_index_(b.KeyframeIndex()),
+        K_(static_cast<int>(b.nav.size())),
+        s_(static_cast<std::size_t>(K_), b.features.size()),  // at most one landmark per observation
+        problem_(ProblemOptions()),
+        ordering_(std::make_shared<ceres::ParameterBlockOrdering>()) {
+    cam_.mount = Pose::FromVector(man_.servo_mount);
+    cam_.top_to_bottom = Pose::FromVector(man_.camera.top_to_bottom);
+    cam_.top = man_.camera.top;
+    cam_.bottom = man_.camera.bottom;
+    dvl_model_.mesh = &index_;
+    dvl_model_.mount = cam_.mount;
+    dvl_model_.servo_to_dvl = Pose::FromVector(man_.servo_to_dvl);
+    extrinsic_nominal_ = Pose::FromVector(man_.camera.servo_to_top);
+    result_.options = o;
+  }
+
+  // ---- the initial state ----
+  void InitialiseVehicleStates(const AdjustmentResult* warm);
+  void InitialiseLandmarks(const Pose& x_gM_start, const AdjustmentResult* warm);
+  void PlaceModelPivot(const Pose& x_gM_start);
+  // ---- the problem ----
+  void BuildProblem(const Pose& x_gM_initial);
+  // The DVL residuals at the initial alignment (initial poses and servo
+  // angles against x_gM_initial), whatever state a warm start began from.
+  void RecordInitialDvlResiduals(const Pose& x_gM_initial, bool warm);
+  // ---- the solve rounds ----
+  void Solve();
+  // ---- the result ----
+  AdjustmentResult CollectResults(const Pose& x_gM_initial);
+
+ private:
+  static ceres::Problem::Options ProblemOptions() {
+    ceres::Problem::Options po;
+    po.enable_fast_removal = true;
+    po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    return po;
+  }
+  std::size_t At(int k) const { return static_cast<std::size_t>(k); }
+  // g <- top camera at keyframe index k, with the extrinsic the landmarks are initialised from.
+  Pose TopCamera(int k) const {
+    return BlockToPose(s_.pose[At(k)].data()) * man_.VehicleToServo(s_.servo[At(k)]) * x_s_cT0_;
+  }
+  bool StereoObservation(const FeatureObservation& f) const { return f.has_bottom && man_.camera.stereo(); }
+  std::optional<Eigen::Vector3d> Triangulate(const std::vector<int>& observations, const Pose& x_gM0);
+  bool KeepObservationsInFront(const Eigen::Vector3d& p, std::vector<int>* used, std::set<std::int64_t>* views);
+  void Label(ceres::ResidualBlockId id, ResidualLabel::Kind kind, std::int64_t a = 0, std::int64_t b = 0) {
+    block_ids_.push_back(id);
+    block_labels_.push_back({kind, a, b});
+  }
+  void AddParameterBlocks();
+  void AddPriorsToProblem(const Pose& x_gM_initial);
+  void AddOdometryToProblem();
+  void AddReprojectionToProblem();
+  void AddDvlToProblem();
+  void AddSurfaceToProblem();
+  void RecordDvlResiduals(bool initial);
+  ceres::Solver::Options SolverOptions();
+  void ThrowIfSolveFailed(const Observer& observer, const ceres::Solver::Summary& summary);
+  std::size_t CavityStep();
+  struct Rejected {
+    std::size_t observations = 0, landmarks = 0;
+  };
+  Rejected RejectOutliers();
+  std::size_t DropLandmarksWithFewViews(std::vector<ReprojectionBlock>* kept, std::set<ceres::ResidualBlockId>* gone);
+  void ForgetLabelsOf(const std::set<ceres::ResidualBlockId>& gone);
+  void CollectLandmarks(const LandmarkCovariances& cov);
+
+  const SurveyBundle& b_;
+  const SurveyManifest& man_;
+  const MeshIndex& index_;
+  const AdjustmentOptions& o_;
+  Progress& progress_;
+  const FactorSigmas sigma_;
+  const std::unordered_map<std::int64_t, int> kf_index_;
+  const int K_;
+  State s_;
+  adjust::CameraModel cam_;
+  adjust::DvlModel dvl_model_;
+  Pose extrinsic_nominal_;
+  Pose x_s_cT0_;                                // the extrinsic the landmarks are initialised with
+  std::vector<std::vector<int>> landmark_obs_;  // observations used, per landmark of s_
+  AdjustmentResult result_;                     // filled by every stage
+  // The problem.
+  ceres::Problem problem_;
+  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> se3_;
+  std::unique_ptr<ceres::HuberLoss> huber_;
+  std::vector<ceres::ResidualBlockId> block_ids_;  // with labels, to name the likely input of a runaway
+  std::vector<ResidualLabel> block_labels_;
+  std::vector<ReprojectionBlock> reprojection_;
+  std::vector<ceres::ResidualBlockId> surface_block_;  // per landmark (null: none)
+  // Per landmark: labelled off the model by its cavity estimate (the E-step
+  // between solves, LabelRule::kCavity); the factors read it, so it is never
+  // resized.
+  std::vector<char> cavity_off_;
+  bool cavity_labels_ = false;
+  // The solve.
+  std::shared_ptr<ceres::ParameterBlockOrdering> ordering_;
+  int num_threads_ = 1;
+  std::vector<char> dropped_;  // per landmark: removed by the outlier rejection
+  int label_rounds_ = 0;
+  double initial_cost_ = -1, solver_seconds_ = 0;
+  ceres::Solver::Summary summary_;
+};
+
+// ---- the initial state ------------------------------------------------------------
+
+// Poses and servo angles from nav.csv (or a warm start's, per keyframe it
+// holds), the extrinsic at its nominal value (or the warm start's).
+void BundleAdjuster::InitialiseVehicleStates(const AdjustmentResult* warm) {
+  std::unordered_map<std::int64_t, int> warm_kf;
+  if (warm) {
+    for (std::size_t i = 0; i < warm->keyframes.size(); ++i) warm_kf[warm->keyframes[i]] = static_cast<int>(i);
+  }
+  for (int i = 0; i < K_; ++i) {
+    const NavRecord& n = b_.nav[At(i)];
+    auto w = warm_kf.find(n.keyframe);
+    if (w != warm_kf.end()) {
+      PoseToBlock(Pose::FromVector(warm->poses[At(w->second)]), s_.pose[At(i)].data());
+      s_.servo[At(i)] = warm->servo[At(w->second)];
+    } else {
+      PoseToBlock(Pose::FromVector(n.x_gv), s_.pose[At(i)].data());
+      s_.servo[At(i)] = n.servo;
+    }
+  }
+  PoseToBlock(warm ? Pose::FromVector(warm->x_s_cT) : extrinsic_nominal_, s_.extrinsic.data());
+  x_s_cT0_ = BlockToPose(s_.extrinsic.data());
+}
+
+// A landmark's initial point triangulated from the rays of its observations
+// (nullopt: not triangulable, or a wrong match far from the prior mesh;
+// counted in result_).
+std::optional<Eigen::Vector3d> BundleAdjuster::Triangulate(const std::vector<int>& observations, const Pose& x_gM0) {
+  std::vector<ViewRay> rays;
+  for (int fi : observations) {
+    const FeatureObservation& f = b_.features[At(fi)];
+    const Pose g_cT = TopCamera(kf_index_.at(f.keyframe));
+    auto add = [&](const Pose& g_c, const PinholeIntrinsics& k, const Eigen::Vector2d& uv) {
+      ViewRay r;
+      r.origin = g_c.translation();
+      r.dir = g_c.Rotate(k.Unproject(uv)).normalized();
+      r.g_c = g_c;
+      r.pixel = uv;
+      r.fx = k.fx;
+      r.fy = k.fy;
+      r.cx = k.cx;
+      r.cy = k.cy;
+      rays.push_back(r);
+    };
+    add(g_cT, cam_.top, f.top);
+    if (StereoObservation(f)) add(g_cT * cam_.top_to_bottom, cam_.bottom, f.bottom);
+  }
+  const auto t = TriangulateLandmark(rays, TriangulationOptions{}, &index_, x_gM0);
+  if (!t) {
+    ++result_.num_landmarks_skipped;
+    return std::nullopt;
+  }
+  if (o_.max_initial_deviation > 0 && !t->from_mesh && !NearTheMesh(index_, x_gM0, t->point, rays, t->inliers, o_)) {
+    ++result_.num_landmarks_skipped;
+    ++result_.num_landmarks_off_model;
+    return std::nullopt;
+  }
+  return t->point;
+}
+
+// Observations whose camera sees the initial point from behind cannot be
+// evaluated (Ceres needs every residual at the start): leaves them out of
+// *used (counted in result_) and *views the keyframes of the rest. False when
+// fewer than min_observations keyframes remain.
+bool BundleAdjuster::KeepObservationsInFront(const Eigen::Vector3d& p, std::vector<int>* used,
+                                             std::set<std::int64_t>* views) {
+  std::vector<int> in_front;
+  std::set<std::int64_t> kept_views;
+  for (int fi : *used) {
+    const FeatureObservation& f = b_.features[At(fi)];
+    const Pose g_cT = TopCamera(kf_index_.at(f.keyframe));
+    const bool front = (g_cT.Inverse() * p).z() > 0.05 &&
+                       (!StereoObservation(f) || ((g_cT * cam_.top_to_bottom).Inverse() * p).z() > 0.05);
+    if (front) {
+      in_front.push_back(fi);
+      kept_views.insert(f.keyframe);
+    } else {
+      ++result_.observations_rejected;
+    }
+  }
+  if (static_cast<int>(kept_views.size()) < o_.min_observations) return false;
+  used->swap(in_front);
+  views->swap(kept_views);
+  return true;
+}
+
+// Every landmark seen in min_observations keyframes, in id order: at a warm
+// start's point, else landmarks.csv's, else triangulated.
+void BundleAdjuster::InitialiseLandmarks(const Pose& x_gM_start, const AdjustmentResult* warm) {
+  std::unordered_map<std::int64_t, std::vector<int>> obs_of;
+  for (int i = 0; i < static_cast<int>(b_.features.size()); ++i) obs_of[b_.features[At(i)].landmark].push_back(i);
+  std::unordered_map<std::int64_t, Eigen::Vector3d> given;
+  if (b_.landmarks) {
+    for (const auto& l : *b_.landmarks) given[l.landmark] = l.p;
+  }
+  std::unordered_map<std::int64_t, Eigen::Vector3d> warm_lm;
+  if (warm) {
+    for (const auto& l : warm->landmarks) warm_lm[l.id] = l.p;
+  }
+  progress_.Update(0.03, "initialising landmarks");
+  std::vector<std::int64_t> ids;
+  ids.reserve(obs_of.size());
+  for (const auto& [id, list] : obs_of) ids.push_back(id);
+  std::sort(ids.begin(), ids.end());
+  for (std::int64_t id : ids) {
+    const std::vector<int>& list = obs_of[id];
+    std::set<std::int64_t> views;
+    for (int fi : list) views.insert(b_.features[At(fi)].keyframe);
+    if (static_cast<int>(views.size()) < o_.min_observations) {
+      ++result_.num_landmarks_skipped;
+      continue;
+    }
+    std::optional<Eigen::Vector3d> p;
+    if (auto w = warm_lm.find(id); w != warm_lm.end()) {
+      p = w->second;
+    } else if (auto g = given.find(id); g != given.end()) {
+      p = g->second;
+    } else {
+      p = Triangulate(list, x_gM_start);
+      if (!p) continue;
+    }
+    std::vector<int> used = list;
+    if (!KeepObservationsInFront(*p, &used, &views)) {
+      ++result_.num_landmarks_skipped;
+      continue;
+    }
+    s_.landmark.push_back({p->x(), p->y(), p->z()});
+    s_.landmark_id.push_back(id);
+    s_.landmark_views.push_back(static_cast<int>(views.size()));
+    landmark_obs_.push_back(used);
+  }
+  if (s_.landmark.empty() && !b_.features.empty()) {
+    throw InputError({b_.directory, 0, 0, "features.csv"}, "no landmark could be initialised");
+  }
+}
+
+// The pivot of the model pose: the centroid of the landmarks (or of the
+// vehicle positions); see State::model.
+void BundleAdjuster::PlaceModelPivot(const Pose& x_gM_start) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  if (!s_.landmark.empty()) {
+    for (const auto& l : s_.landmark) c += Eigen::Vector3d(l[0], l[1], l[2]);
+    c /= static_cast<double>(s_.landmark.size());
+  } else {
+    for (const auto& p : s_.pose) c += Eigen::Vector3d(p[4], p[5], p[6]);
+    c /= static_cast<double>(s_.pose.size());
+  }
+  const Pose x_gC(x_gM_start.quaternion(), c);
+  s_.model_offset = x_gC.Inverse() * x_gM_start;
+  PoseToBlock(x_gC, s_.model.data());
+  dvl_model_.model_offset = s_.model_offset;
+}
+
+// ---- the problem ------------------------------------------------------------------
+
+void BundleAdjuster::BuildProblem(const Pose& x_gM_initial) {
+  progress_.Update(0.06, "building the factor graph");
+  huber_ = std::make_unique<ceres::HuberLoss>(o_.huber_sigmas);
+  AddParameterBlocks();
+  AddPriorsToProblem(x_gM_initial);
+  AddOdometryToProblem();
+  AddReprojectionToProblem();
+  AddDvlToProblem();
+  AddSurfaceToProblem();
+}
+
+// Poses (on SE(3)) with their servo angles, the extrinsic, the model pose,
+// the landmarks; held where the options say.
+void BundleAdjuster::AddParameterBlocks() {
+  for (int i = 0; i < K_; ++i) {
+    problem_.AddParameterBlock(s_.pose[At(i)].data(), kPoseSize, &se3_);
+    problem_.AddParameterBlock(&s_.servo[At(i)], 1);
+    if (!o_.estimate_servo) problem_.SetParameterBlockConstant(&s_.servo[At(i)]);
+  }
+  problem_.AddParameterBlock(s_.extrinsic.data(), kPoseSize, &se3_);
+  problem_.AddParameterBlock(s_.model.data(), kPoseSize, &se3_);
+  if (!o_.estimate_extrinsic) problem_.SetParameterBlockConstant(s_.extrinsic.data());
+  if (!o_.estimate_model_pose) problem_.SetParameterBlockConstant(s_.model.data());
+  for (auto& l : s_.landmark) problem_.AddParameterBlock(l.data(), 3);
+}
+
+// Priors: the gauge, depth/pitch/roll and servo per keyframe, the extrinsic,
+// the model pose (eq. 8, on x_gC).
+void BundleAdjuster::AddPriorsToProblem(const Pose& x_gM_initial) {
+  Label(
+      problem_.AddResidualBlock(adjust::GaugePriorFactor::Create(b_.nav[0].x_gv, o_.gauge_sigma_xy, o_.gauge_sigma_yaw),
+                                nullptr, s_.pose[0].data()),
+      ResidualLabel::kGauge, b_.nav[0].keyframe);
+  for (int i = 0; i < K_; ++i) {
+    const NavRecord& n = b_.nav[At(i)];
+    Label(problem_.AddResidualBlock(
+              adjust::ZprFactor::Create(n.depth, n.pitch_meas, n.roll_meas, sigma_.depth, sigma_.roll_pitch), nullptr,
+              s_.pose[At(i)].data()),
+          ResidualLabel::kZpr, n.keyframe);
+    Label(problem_.AddResidualBlock(adjust::ServoPriorFactor::Create(n.servo, sigma_.servo), nullptr, &s_.servo[At(i)]),
+          ResidualLabel::kServo, n.keyframe);
+  }
+  Label(problem_.AddResidualBlock(adjust::PosePriorFactor::Create(extrinsic_nominal_, man_.noise.servo_to_top_sigma),
+                                  nullptr, s_.extrinsic.data()),
+        ResidualLabel::kExtrinsic);
+  const Pose x_gC_prior = x_gM_initial * s_.model_offset.Inverse();
+  Label(problem_.AddResidualBlock(adjust::PosePriorFactor::Create(x_gC_prior, Vector6d::Constant(sigma_.model_pose)),
+                                  nullptr, s_.model.data()),
+        ResidualLabel::kModelPose);
+}
+
+// Odometry between keyframes, its sigma growing with the time between them.
+void BundleAdjuster::AddOdometryToProblem() {
+  for (const OdometryRecord& od : b_.odometry) {
+    const int i = kf_index_.at(od.from), j = kf_index_.at(od.to);
+    const double dt = std::max(1e-3, std::abs(b_.nav[At(j)].t - b_.nav[At(i)].t));
+    Vector6d sigma;
+    sigma.head<3>().setConstant(man_.noise.odometry_translation_rate * dt);
+    sigma.tail<3>().setConstant(man_.noise.odometry_rotation_rate * dt);
+    Label(problem_.AddResidualBlock(adjust::OdometryFactor::Create(od.z, sigma), nullptr, s_.pose[At(i)].data(),
+                                    s_.pose[At(j)].data()),
+          ResidualLabel::kOdometry, od.from, od.to);
+  }
+}
+
+// Reprojection: one stereo (or mono) block per observation kept at the
+// initialisation, Huber-robust.
+void BundleAdjuster::AddReprojectionToProblem() {
+  for (std::size_t li = 0; li < s_.landmark.size(); ++li) {
+    for (int fi : landmark_obs_[li]) {
+      const FeatureObservation& f = b_.features[At(fi)];
+      const int k = kf_index_.at(f.keyframe);
+      ceres::CostFunction* cf = StereoObservation(f)
+                                    ? adjust::StereoReprojectionFactor::Create(&cam_, f.top, f.bottom, sigma_.pixel)
+                                    : adjust::MonoReprojectionFactor::Create(&cam_, f.top, sigma_.pixel);
+      const ceres::ResidualBlockId id = problem_.AddResidualBlock(
+          cf, huber_.get(), s_.pose[At(k)].data(), &s_.servo[At(k)], s_.extrinsic.data(), s_.landmark[li].data());
+      reprojection_.push_back({id, li, f.keyframe});
+      Label(id, ResidualLabel::kReprojection, s_.landmark_id[li], f.keyframe);
+    }
+  }
+}
+
+// DVL raycasts: one block per beam with a return, Huber-robust.
+void BundleAdjuster::AddDvlToProblem() {
+  if (!o_.use_dvl) return;
+  for (const DvlRecord& d : b_.dvl) {
+    const int k = kf_index_.at(d.keyframe);
+    for (int beam = 0; beam < 4; ++beam) {
+      const double r = d.range[At(beam)];
+      if (!DvlRecord::HasReturn(r)) continue;
+      Label(problem_.AddResidualBlock(
+                adjust::DvlRaycastFactor::Create(&dvl_model_, man_.BeamDirection(beam), r, sigma_.dvl_range),
+                huber_.get(), s_.pose[At(k)].data(), &s_.servo[At(k)], s_.model.data()),
+            ResidualLabel::kDvl, d.keyframe, beam + 1);
+    }
+  }
+}
+
+// The surface constraint of every landmark (surface_factor.h), unless naive.
+void BundleAdjuster::AddSurfaceToProblem() {
+  surface_block_.assign(s_.landmark.size(), nullptr);
+  cavity_off_.assign(s_.landmark.size(), 0);
+  cavity_labels_ = o_.model == SurfaceModel::kMaxMixture && o_.labels == LabelRule::kCavity;
+  if (o_.model == SurfaceModel::kNaive) return;
+  for (std::size_t li = 0; li < s_.landmark.size(); ++li) {
+    surface_block_[li] = problem_.AddResidualBlock(
+        adjust::SurfaceFactor::Create(&index_, &s_.model_offset, o_.lookup, o_.model, o_.sigma0, o_.sigma1,
+                                      cavity_labels_ ? &cavity_off_[li] : nullptr),
+        nullptr, s_.model.data(), s_.landmark[li].data());
+    Label(surface_block_[li], ResidualLabel::kSurface, s_.landmark_id[li]);
+  }
+}
+
+// Per DVL beam with a return, measured minus predicted range at the current
+// state: appended (initial) or filled in as the final residual.
+void BundleAdjuster::RecordDvlResiduals(bool initial) {
+  std::size_t n = 0;
+  for (const DvlRecord& d : b_.dvl) {
+    const int k = kf_index_.at(d.keyframe);
+    for (int beam = 0; beam < 4; ++beam) {
+      const double r = d.range[At(beam)];
+      if (!DvlRecord::HasReturn(r)) continue;
+      const double pred = adjust::DvlRaycastFactor::PredictRange(dvl_model_, s_.pose[At(k)].data(), &s_.servo[At(k)],
+                                                                 s_.model.data(), man_.BeamDirection(beam));
+      if (initial) {
+        result_.dvl.push_back({d.keyframe, beam + 1, r, r - pred, std::nan("")});
+      } else {
+        result_.dvl[n++].final = r - pred;
+      }
+    }
+  }
+}
+
+void BundleAdjuster::RecordInitialDvlResiduals(const Pose& x_gM_initial, bool warm) {
+  const std::vector<double> saved(s_.model.begin(), s_.model.end());
+  PoseToBlock(x_gM_initial * s_.model_offset.Inverse(), s_.model.data());
+  std::vector<std::array<double, kPoseSize>> saved_pose;
+  std::vector<double> saved_servo;
+  if (warm) {
+    saved_pose.assign(s_.pose.begin(), s_.pose.end());
+    saved_servo.assign(s_.servo.begin(), s_.servo.end());
+    for (int i = 0; i < K_; ++i) {
+      PoseToBlock(Pose::FromVector(b_.nav[At(i)].x_gv), s_.pose[At(i)].data());
+      s_.servo[At(i)] = b_.nav[At(i)].servo;
+    }
+  }
+  RecordDvlResiduals(true);
+  std::copy(saved.begin(), saved.end(), s_.model.begin());
+  if (warm) {
+    std::copy(saved_pose.begin(), saved_pose.end(), s_.pose.begin());
+    std::copy(saved_servo.begin(), saved_servo.end(), s_.servo.begin());
+  }
+}
+
+// ---- the solve rounds ----------------------------------------------------------------
+
+// Levenberg-Marquardt with the sparse (or iterative) Schur complement, the
+// landmarks eliminated first.
+ceres::Solver::Options BundleAdjuster::SolverOptions() {
+  ceres::Solver::Options so;
+  so.minimizer_type = ceres::TRUST_REGION;
+  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  const bool iterative = o_.linear_solver == AdjustmentOptions::LinearSolver::kIterativeSchur;
+  so.linear_solver_type = iterative ? ceres::ITERATIVE_SCHUR : ceres::SPARSE_SCHUR;
+  so.preconditioner_type = ceres::SCHUR_JACOBI;
+  so.use_explicit_schur_complement = false;
+  so.max_num_iterations = o_.max_iterations;
+  if (o_.max_solver_seconds > 0) so.max_solver_time_in_seconds = o_.max_solver_seconds;
+  so.function_tolerance = o_.function_tolerance;
+  so.gradient_tolerance = o_.gradient_tolerance;
+  so.parameter_tolerance = o_.parameter_tolerance;
+  so.num_threads =
+      o_.num_threads > 0 ? o_.num_threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  num_threads_ = so.num_threads;
+  so.minimizer_progress_to_stdout = o_.verbose;
+  so.logging_type = o_.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
+  so.update_state_every_iteration = true;
+  for (auto& l : s_.landmark) ordering_->AddElementToGroup(l.data(), 0);
+  for (int i = 0; i < K_; ++i) {
+    ordering_->AddElementToGroup(s_.pose[At(i)].data(), 1);
+    ordering_->AddElementToGroup(&s_.servo[At(i)], 1);
+  }
+  ordering_->AddElementToGroup(s_.extrinsic.data(), 1);
+  ordering_->AddElementToGroup(s_.model.data(), 1);
+  so.linear_solver_ordering = ordering_;
+  return so;
+}
+
+// A runaway (the cost watch), a cancel or a solver failure ends the adjustment.
+void BundleAdjuster::ThrowIfSolveFailed(const Observer& observer, const ceres::Solver::Summary& summary) {
+  if (!observer.stop_reason().empty()) {
+    throw InputError({b_.directory, 0, 0, ""},
+                     "the adjustment stopped: " + observer.stop_reason() + ". The largest residual is " +
+                         LargestResidual(problem_, block_ids_, block_labels_) + ": the likely input at fault");
+  }
+  if (summary.termination_type == ceres::USER_FAILURE || progress_.Cancelled()) throw Cancelled();
+  if (summary.termination_type == ceres::FAILURE) {
+    throw std::runtime_error("bundle adjustment failed: " + summary.message);
+  }
+}
+
+// Solve; after each solve the cavity E-step and, for rejection_rounds
+// rounds, the outlier rejection; solved again while either changed the
+// problem (after the rejection rounds: while the labels change, at most
+// label_rounds E-steps in all).
+void BundleAdjuster::Solve() {
+  ceres::Solver::Options so = SolverOptions();
+  Observer observer(s_, index_, o_, cavity_off_, progress_, result_.iterations,
+                    static_cast<std::size_t>(problem_.NumResiduals()));
+  so.callbacks.push_back(&observer);
+  progress_.Update(0.1, std::string(SurfaceModelName(o_.model)) + " adjustment: solving");
+  dropped_.assign(s_.landmark.size(), 0);
+  for (int round = 0;; ++round) {
+    observer.set_iteration_offset(result_.iterations.empty() ? 0 : result_.iterations.back().iteration);
+    ceres::Solve(so, &problem_, &summary_);
+    if (o_.verbose) std::printf("%s\n", summary_.FullReport().c_str());
+    ThrowIfSolveFailed(observer, summary_);
+    if (initial_cost_ < 0) initial_cost_ = summary_.initial_cost;
+    solver_seconds_ += summary_.total_time_in_seconds;
+    const std::size_t relabelled = CavityStep();
+    if (round >= o_.rejection_rounds) {
+      if (relabelled == 0) break;
+      progress_.Update(observer.fraction(),
+                       std::to_string(relabelled) + " landmarks off the model by their cavity estimate; solving again");
+      continue;
+    }
+    const Rejected rejected = RejectOutliers();
+    if (rejected.observations == 0 && relabelled == 0) break;
+    progress_.Update(observer.fraction(), "removed " + std::to_string(rejected.observations) +
+                                              " outlying observations and " + std::to_string(rejected.landmarks) +
+                                              " landmarks, " + std::to_string(relabelled) +
+                                              " landmarks off the model by their cavity estimate; solving again");
+  }
+}
+
+// The E-step by the cavity estimate (cavity_label.h, CavityLabelOff) over
+// every landmark still in the problem; returns how many labels changed.
+std::size_t BundleAdjuster::CavityStep() {
+  if (!cavity_labels_ || label_rounds_ >= o_.label_rounds) return 0;
+  ++label_rounds_;
+  const Pose x_gM_now = s_.ModelPose();
+  std::size_t n = 0;
+  for (std::size_t li = 0; li < s_.landmark.size(); ++li) {
+    if (dropped_[li]) continue;
+    const Eigen::Vector3d l(s_.landmark[li][0], s_.landmark[li][1], s_.landmark[li][2]);
+    const double h = adjust::SurfaceDeviation(index_, x_gM_now, l, o_.lookup);
+    const char off = adjust::CavityLabelOff(problem_, s_.landmark[li].data(), surface_block_[li], h,
+                                            cavity_off_[li] != 0, o_.sigma0, o_.sigma1);
+    n += off != cavity_off_[li];
+    cavity_off_[li] = off;
+  }
+  return n;
+}
+
+// Removes the observations beyond outlier_sigmas (the 2-D error in either
+// camera), then the landmarks left with too few views.
+BundleAdjuster::Rejected BundleAdjuster::RejectOutliers() {
+  const double limit2 = o_.outlier_sigmas * o_.outlier_sigmas;
+  Rejected rejected;
+  std::vector<ReprojectionBlock> kept;
+  std::set<ceres::ResidualBlockId> gone;
+  for (const ReprojectionBlock& rb : reprojection_) {
+    double r[4];
+    problem_.EvaluateResidualBlock(rb.id, false, nullptr, r, nullptr);
+    const int n = problem_.GetCostFunctionForResidualBlock(rb.id)->num_residuals();
+    bool bad = r[0] * r[0] + r[1] * r[1] > limit2;
+    if (n == 4) bad = bad || r[2] * r[2] + r[3] * r[3] > limit2;
+    if (bad) {
+      problem_.RemoveResidualBlock(rb.id);
+      gone.insert(rb.id);
+      ++rejected.observations;
+    } else {
+      kept.push_back(rb);
+    }
+  }
+  rejected.landmarks = DropLandmarksWithFewViews(&kept, &gone);
+  reprojection_.swap(kept);
+  ForgetLabelsOf(gone);
+  result_.observations_rejected += static_cast<int>(rejected.observations);
+  result_.num_landmarks_skipped += static_cast<int>(rejected.landmarks);
+  return rejected;
+}
+
+// Drops the landmarks whose kept observations span fewer than
+// min_observations keyframes (their blocks join *gone and leave *kept);
+// updates every landmark's view count; returns how many were dropped.
+std::size_t BundleAdjuster::DropLandmarksWithFewViews(std::vector<ReprojectionBlock>* kept,
+                                                      std::set<ceres::ResidualBlockId>* gone) {
+  std::vector<std::set<std::int64_t>> views(s_.landmark.size());
+  for (const ReprojectionBlock& rb : *kept) views[rb.landmark].insert(rb.keyframe);
+  std::size_t lost = 0;
+  for (std::size_t li = 0; li < s_.landmark.size(); ++li) {
+    if (dropped_[li] || static_cast<int>(views[li].size()) >= o_.min_observations) continue;
+    std::vector<ceres::ResidualBlockId> with;
+    problem_.GetResidualBlocksForParameterBlock(s_.landmark[li].data(), &with);
+    gone->insert(with.begin(), with.end());
+    problem_.RemoveParameterBlock(s_.landmark[li].data());
+    ordering_->Remove(s_.landmark[li].data());
+    dropped_[li] = 1;
+    ++lost;
+  }
+  if (lost) {
+    std::vector<ReprojectionBlock> still;
+    for (const ReprojectionBlock& rb : *kept) {
+      if (!dropped_[rb.landmark]) still.push_back(rb);
+    }
+    kept->swap(still);
+  }
+  for (std::size_t li = 0; li < s_.landmark.size(); ++li) s_.landmark_views[li] = static_cast<int>(views[li].size());
+  return lost;
+}
+
+// Keeps the labels of the blocks still in the problem.
+void BundleAdjuster::ForgetLabelsOf(const std::set<ceres::ResidualBlockId>& gone) {
+  if (gone.empty()) return;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < block_ids_.size(); ++i) {
+    if (gone.count(block_ids_[i])) continue;
+    block_ids_[n] = block_ids_[i];
+    block_labels_[n++] = block_labels_[i];
+  }
+  block_ids_.resize(n);
+  block_labels_.resize(n);
+}
+
+// ---- the result ------------------------------------------------------------------------
+
+AdjustmentResult BundleAdjuster::CollectResults(const Pose& x_gM_initial) {
+  result_.termination =
+      std::string(ceres::TerminationTypeToString(summary_.termination_type)) + ": " + summary_.message;
+  result_.converged = summary_.termination_type == ceres::CONVERGENCE;
+  result_.solver_seconds = solver_seconds_;
+  result_.initial_cost = initial_cost_;
+  result_.final_cost = summary_.final_cost;
+  result_.num_residual_blocks = summary_.num_residual_blocks;
+  for (int i = 0; i < K_; ++i) {
+    result_.keyframes.push_back(b_.nav[At(i)].keyframe);
+    result_.poses.push_back(BlockToPose(s_.pose[At(i)].data()).ToVector());
+    result_.servo.push_back(s_.servo[At(i)]);
+  }
+  result_.x_gM = s_.ModelPose().ToVector();
+  result_.x_gM_initial = x_gM_initial.ToVector();
+  result_.x_s_cT = BlockToPose(s_.extrinsic.data()).ToVector();
+  result_.x_s_cT_initial = extrinsic_nominal_.ToVector();
+  // Landmark covariances (landmark_covariance.h), in the order of the kept landmarks.
+  std::vector<double*> kept_blocks;
+  std::vector<ceres::ResidualBlockId> kept_surface;
+  for (std::size_t i = 0; i < s_.landmark.size(); ++i) {
+    if (dropped_[i]) continue;
+    kept_blocks.push_back(s_.landmark[i].data());
+    kept_surface.push_back(surface_block_[i]);
+  }
+  if (o_.covariance != CovarianceMethod::kNone) progress_.Update(0.95, "landmark covariances");
+  const LandmarkCovariances cov =
+      ComputeLandmarkCovariances(problem_, kept_blocks, o_.covariance, num_threads_, s_.model.data(), &kept_surface);
+  result_.covariance_method = cov.method;
+  result_.covariance_note = cov.note;
+  result_.covariance_seconds = cov.seconds;
+  result_.covariance_cpu_seconds = cov.cpu_seconds;
+  result_.covariance_reduced_size = cov.reduced_size;
+  result_.covariance_factor_nonzeros = cov.factor_nonzeros;
+  CollectLandmarks(cov);
+  RecordDvlResiduals(false);
+  return std::move(result_);
+}
+
+// The kept landmarks with their deviation, covariance, sigma of h and label.
+void BundleAdjuster::CollectLandmarks(const LandmarkCovariances& cov) {
+  const Pose x_gM = s_.ModelPose();
+  for (std::size_t i = 0, kept_index = 0; i < s_.landmark.size(); ++i) {
+    if (dropped_[i]) continue;
+    LandmarkEstimate e;
+    e.id = s_.landmark_id[i];
+    e.p = {s_.landmark[i][0], s_.landmark[i][1], s_.landmark[i][2]};
+    e.deviation = adjust::SurfaceDeviation(index_, x_gM, e.p, o_.lookup);
+    e.covariance = cov.covariance[kept_index];
+    e.sigma_h =
+        std::isfinite(cov.sigma_h[kept_index])
+            ? cov.sigma_h[kept_index]
+            : DeviationSigma(e.covariance, x_gM.Rotate(index_.OrthogonalSignedDistance(x_gM, e.p, o_.lookup).normal));
+    ++kept_index;
+    e.label = cavity_off_[i] ? 0 : MaxMixtureLabel(e.deviation, o_.sigma0, o_.sigma1);
+    result_.num_labels_off_by_cavity += cavity_off_[i];
+    e.observations = s_.landmark_views[i];
+    result_.landmarks.push_back(e);
+  }
+}
+
 }  // namespace
 
 AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, const Pose& x_gM_initial,
@@ -279,516 +962,16 @@ AdjustmentResult RunAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, 
   if (mesh.empty()) throw InputError({"mesh", 0, 0, ""}, "the prior mesh has no faces");
   progress.Update(0.0, "indexing the prior mesh");
   const MeshIndex index(mesh);
-  const SurveyManifest& man = b.manifest;
-  const NoiseModel& nz = man.noise;
-  const double pixel_sigma = Or(o.pixel_sigma, nz.pixel_sigma);
-  const double dvl_sigma = Or(o.dvl_range_sigma, nz.dvl_range_sigma);
-  const double depth_sigma = Or(o.depth_sigma, nz.depth_sigma);
-  const double rp_sigma = Or(o.roll_pitch_sigma, nz.roll_pitch_sigma);
-  const double servo_sigma = Or(o.servo_sigma, nz.servo_sigma);
-  const double model_sigma = Or(o.model_pose_sigma, nz.model_pose_sigma);
-  const auto kf_index = b.KeyframeIndex();
-  const int K = static_cast<int>(b.nav.size());
-
-  // ---- initial state ------------------------------------------------------------
-  // Landmarks: at most one per observation.
-  State s(static_cast<std::size_t>(K), b.features.size());
-  std::unordered_map<std::int64_t, int> warm_kf;
-  if (warm) {
-    for (std::size_t i = 0; i < warm->keyframes.size(); ++i) warm_kf[warm->keyframes[i]] = static_cast<int>(i);
-  }
-  for (int i = 0; i < K; ++i) {
-    const NavRecord& n = b.nav[static_cast<std::size_t>(i)];
-    auto w = warm_kf.find(n.keyframe);
-    if (w != warm_kf.end()) {
-      PoseToBlock(Pose::FromVector(warm->poses[static_cast<std::size_t>(w->second)]), s.pose[i].data());
-      s.servo[static_cast<std::size_t>(i)] = warm->servo[static_cast<std::size_t>(w->second)];
-    } else {
-      PoseToBlock(Pose::FromVector(n.x_gv), s.pose[i].data());
-      s.servo[static_cast<std::size_t>(i)] = n.servo;
-    }
-  }
-  const Pose extrinsic_nominal = Pose::FromVector(man.camera.servo_to_top);
-  PoseToBlock(warm ? Pose::FromVector(warm->x_s_cT) : extrinsic_nominal, s.extrinsic.data());
+  BundleAdjuster adjuster(b, index, o, progress);
+  adjuster.InitialiseVehicleStates(warm);
   const Pose x_gM_start = warm ? Pose::FromVector(warm->x_gM) : x_gM_initial;
-
-  adjust::CameraModel cam;
-  cam.mount = Pose::FromVector(man.servo_mount);
-  cam.top_to_bottom = Pose::FromVector(man.camera.top_to_bottom);
-  cam.top = man.camera.top;
-  cam.bottom = man.camera.bottom;
-  adjust::DvlModel dvl_model;
-  dvl_model.mesh = &index;
-  dvl_model.mount = cam.mount;
-  dvl_model.servo_to_dvl = Pose::FromVector(man.servo_to_dvl);
-
-  // Observations per landmark.
-  std::unordered_map<std::int64_t, std::vector<int>> obs_of;
-  for (int i = 0; i < static_cast<int>(b.features.size()); ++i)
-    obs_of[b.features[static_cast<std::size_t>(i)].landmark].push_back(i);
-  std::unordered_map<std::int64_t, Eigen::Vector3d> given;
-  if (b.landmarks) {
-    for (const auto& l : *b.landmarks) given[l.landmark] = l.p;
-  }
-  std::unordered_map<std::int64_t, Eigen::Vector3d> warm_lm;
-  if (warm) {
-    for (const auto& l : warm->landmarks) warm_lm[l.id] = l.p;
-  }
-  progress.Update(0.03, "initialising landmarks");
-  std::vector<std::int64_t> ids;
-  ids.reserve(obs_of.size());
-  for (const auto& [id, list] : obs_of) ids.push_back(id);
-  std::sort(ids.begin(), ids.end());
-  const Pose x_s_cT0 = BlockToPose(s.extrinsic.data());
-  const Pose x_gM0 = x_gM_start;
-  std::vector<std::vector<int>> lm_obs;  // observations used, per kept landmark
-  int skipped = 0, behind = 0, off_model = 0;
-  for (std::int64_t id : ids) {
-    const std::vector<int>& list = obs_of[id];
-    std::set<std::int64_t> views;
-    for (int fi : list) views.insert(b.features[static_cast<std::size_t>(fi)].keyframe);
-    if (static_cast<int>(views.size()) < o.min_observations) {
-      ++skipped;
-      continue;
-    }
-    Eigen::Vector3d p;
-    std::vector<int> used = list;
-    if (auto w = warm_lm.find(id); w != warm_lm.end()) {
-      p = w->second;
-    } else if (auto g = given.find(id); g != given.end()) {
-      p = g->second;
-    } else {
-      std::vector<ViewRay> rays;
-      std::vector<int> ray_obs;
-      for (int fi : list) {
-        const FeatureObservation& f = b.features[static_cast<std::size_t>(fi)];
-        const int k = kf_index.at(f.keyframe);
-        const Pose g_cT = BlockToPose(s.pose[static_cast<std::size_t>(k)].data()) *
-                          man.VehicleToServo(s.servo[static_cast<std::size_t>(k)]) * x_s_cT0;
-        auto add = [&](const Pose& g_c, const PinholeIntrinsics& K_, const Eigen::Vector2d& uv) {
-          ViewRay r;
-          r.origin = g_c.translation();
-          r.dir = g_c.Rotate(K_.Unproject(uv)).normalized();
-          r.g_c = g_c;
-          r.pixel = uv;
-          r.fx = K_.fx;
-          r.fy = K_.fy;
-          r.cx = K_.cx;
-          r.cy = K_.cy;
-          rays.push_back(r);
-          ray_obs.push_back(fi);
-        };
-        add(g_cT, cam.top, f.top);
-        if (f.has_bottom && man.camera.stereo()) add(g_cT * cam.top_to_bottom, cam.bottom, f.bottom);
-      }
-      const auto t = TriangulateLandmark(rays, TriangulationOptions{}, &index, x_gM0);
-      if (!t) {
-        ++skipped;
-        continue;
-      }
-      p = t->point;
-      if (o.max_initial_deviation > 0 && !t->from_mesh && !NearTheMesh(index, x_gM0, p, rays, t->inliers, o)) {
-        ++skipped;
-        ++off_model;
-        continue;
-      }
-    }
-    // Observations whose camera sees the initial point from behind cannot be
-    // evaluated (Ceres needs every residual at the start): leave them out.
-    {
-      std::vector<int> in_front;
-      std::set<std::int64_t> kept_views;
-      for (int fi : used) {
-        const FeatureObservation& f = b.features[static_cast<std::size_t>(fi)];
-        const int k = kf_index.at(f.keyframe);
-        const Pose g_cT = BlockToPose(s.pose[static_cast<std::size_t>(k)].data()) *
-                          man.VehicleToServo(s.servo[static_cast<std::size_t>(k)]) * x_s_cT0;
-        const bool front = (g_cT.Inverse() * p).z() > 0.05 && (!(f.has_bottom && man.camera.stereo()) ||
-                                                               ((g_cT * cam.top_to_bottom).Inverse() * p).z() > 0.05);
-        if (front) {
-          in_front.push_back(fi);
-          kept_views.insert(f.keyframe);
-        } else {
-          ++behind;
-        }
-      }
-      if (static_cast<int>(kept_views.size()) < o.min_observations) {
-        ++skipped;
-        continue;
-      }
-      used.swap(in_front);
-      views.swap(kept_views);
-    }
-    s.landmark.push_back({p.x(), p.y(), p.z()});
-    s.landmark_id.push_back(id);
-    s.landmark_views.push_back(static_cast<int>(views.size()));
-    lm_obs.push_back(used);
-  }
-  if (s.landmark.empty() && !b.features.empty()) {
-    throw InputError({b.directory, 0, 0, "features.csv"}, "no landmark could be initialised");
-  }
-  // The pivot of the model pose: the centroid of the landmarks (or of the vehicle positions).
-  {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    if (!s.landmark.empty()) {
-      for (const auto& l : s.landmark) c += Eigen::Vector3d(l[0], l[1], l[2]);
-      c /= static_cast<double>(s.landmark.size());
-    } else {
-      for (const auto& p : s.pose) c += Eigen::Vector3d(p[4], p[5], p[6]);
-      c /= static_cast<double>(s.pose.size());
-    }
-    const Pose x_gC(x_gM_start.quaternion(), c);
-    s.model_offset = x_gC.Inverse() * x_gM_start;
-    PoseToBlock(x_gC, s.model.data());
-    dvl_model.model_offset = s.model_offset;
-  }
+  adjuster.InitialiseLandmarks(x_gM_start, warm);
+  adjuster.PlaceModelPivot(x_gM_start);
   progress.ThrowIfCancelled();
-
-  // ---- the problem ------------------------------------------------------------------
-  progress.Update(0.06, "building the factor graph");
-  ceres::Problem::Options po;
-  po.enable_fast_removal = true;
-  po.manifold_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  po.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(po);
-  ceres::ProductManifold<ceres::EigenQuaternionManifold, ceres::EuclideanManifold<3>> se3;
-  ceres::HuberLoss huber(o.huber_sigmas);
-  std::vector<ceres::ResidualBlockId> block_ids;  // with labels, to name the likely input of a runaway
-  std::vector<ResidualLabel> block_labels;
-  auto label = [&](ceres::ResidualBlockId id, ResidualLabel::Kind kind, std::int64_t a = 0, std::int64_t b_ = 0) {
-    block_ids.push_back(id);
-    block_labels.push_back({kind, a, b_});
-  };
-  for (int i = 0; i < K; ++i) {
-    problem.AddParameterBlock(s.pose[static_cast<std::size_t>(i)].data(), kPoseSize, &se3);
-    problem.AddParameterBlock(&s.servo[static_cast<std::size_t>(i)], 1);
-    if (!o.estimate_servo) problem.SetParameterBlockConstant(&s.servo[static_cast<std::size_t>(i)]);
-  }
-  problem.AddParameterBlock(s.extrinsic.data(), kPoseSize, &se3);
-  problem.AddParameterBlock(s.model.data(), kPoseSize, &se3);
-  if (!o.estimate_extrinsic) problem.SetParameterBlockConstant(s.extrinsic.data());
-  if (!o.estimate_model_pose) problem.SetParameterBlockConstant(s.model.data());
-  for (auto& l : s.landmark) problem.AddParameterBlock(l.data(), 3);
-
-  // Priors: gauge, zpr, servo, extrinsic, model pose.
-  label(problem.AddResidualBlock(adjust::GaugePriorFactor::Create(b.nav[0].x_gv, o.gauge_sigma_xy, o.gauge_sigma_yaw),
-                                 nullptr, s.pose[0].data()),
-        ResidualLabel::kGauge, b.nav[0].keyframe);
-  for (int i = 0; i < K; ++i) {
-    const NavRecord& n = b.nav[static_cast<std::size_t>(i)];
-    label(problem.AddResidualBlock(adjust::ZprFactor::Create(n.depth, n.pitch_meas, n.roll_meas, depth_sigma, rp_sigma),
-                                   nullptr, s.pose[static_cast<std::size_t>(i)].data()),
-          ResidualLabel::kZpr, n.keyframe);
-    label(problem.AddResidualBlock(adjust::ServoPriorFactor::Create(n.servo, servo_sigma), nullptr,
-                                   &s.servo[static_cast<std::size_t>(i)]),
-          ResidualLabel::kServo, n.keyframe);
-  }
-  label(problem.AddResidualBlock(adjust::PosePriorFactor::Create(extrinsic_nominal, nz.servo_to_top_sigma), nullptr,
-                                 s.extrinsic.data()),
-        ResidualLabel::kExtrinsic);
-  const Pose x_gC_prior = x_gM_initial * s.model_offset.Inverse();
-  label(problem.AddResidualBlock(adjust::PosePriorFactor::Create(x_gC_prior, Vector6d::Constant(model_sigma)), nullptr,
-                                 s.model.data()),
-        ResidualLabel::kModelPose);
-  // Odometry.
-  for (const OdometryRecord& od : b.odometry) {
-    const int i = kf_index.at(od.from), j = kf_index.at(od.to);
-    const double dt =
-        std::max(1e-3, std::abs(b.nav[static_cast<std::size_t>(j)].t - b.nav[static_cast<std::size_t>(i)].t));
-    Vector6d sigma;
-    sigma.head<3>().setConstant(nz.odometry_translation_rate * dt);
-    sigma.tail<3>().setConstant(nz.odometry_rotation_rate * dt);
-    label(problem.AddResidualBlock(adjust::OdometryFactor::Create(od.z, sigma), nullptr,
-                                   s.pose[static_cast<std::size_t>(i)].data(),
-                                   s.pose[static_cast<std::size_t>(j)].data()),
-          ResidualLabel::kOdometry, od.from, od.to);
-  }
-  // Reprojection.
-  struct ReprojectionBlock {
-    ceres::ResidualBlockId id;
-    std::size_t landmark;
-    std::int64_t keyframe;
-  };
-  std::vector<ReprojectionBlock> reprojection;
-  for (std::size_t li = 0; li < s.landmark.size(); ++li) {
-    for (int fi : lm_obs[li]) {
-      const FeatureObservation& f = b.features[static_cast<std::size_t>(fi)];
-      const int k = kf_index.at(f.keyframe);
-      ceres::CostFunction* cf = (man.camera.stereo() && f.has_bottom)
-                                    ? adjust::StereoReprojectionFactor::Create(&cam, f.top, f.bottom, pixel_sigma)
-                                    : adjust::MonoReprojectionFactor::Create(&cam, f.top, pixel_sigma);
-      const ceres::ResidualBlockId id =
-          problem.AddResidualBlock(cf, &huber, s.pose[static_cast<std::size_t>(k)].data(),
-                                   &s.servo[static_cast<std::size_t>(k)], s.extrinsic.data(), s.landmark[li].data());
-      reprojection.push_back({id, li, f.keyframe});
-      label(id, ResidualLabel::kReprojection, s.landmark_id[li], f.keyframe);
-    }
-  }
-  // DVL raycasts.
-  if (o.use_dvl) {
-    for (const DvlRecord& d : b.dvl) {
-      const int k = kf_index.at(d.keyframe);
-      for (int beam = 0; beam < 4; ++beam) {
-        const double r = d.range[static_cast<std::size_t>(beam)];
-        if (!DvlRecord::HasReturn(r)) continue;
-        label(problem.AddResidualBlock(
-                  adjust::DvlRaycastFactor::Create(&dvl_model, man.BeamDirection(beam), r, dvl_sigma), &huber,
-                  s.pose[static_cast<std::size_t>(k)].data(), &s.servo[static_cast<std::size_t>(k)], s.model.data()),
-              ResidualLabel::kDvl, d.keyframe, beam + 1);
-      }
-    }
-  }
-  // Surface constraints.
-  std::vector<ceres::ResidualBlockId> surface_block(s.landmark.size(), nullptr);
-  // Per landmark: labelled off the model by its cavity estimate (the E-step
-  // between solves, LabelRule::kCavity); the factors read it, so it is never
-  // resized.
-  std::vector<char> cavity_off(s.landmark.size(), 0);
-  const bool cavity_labels = o.model == SurfaceModel::kMaxMixture && o.labels == LabelRule::kCavity;
-  if (o.model != SurfaceModel::kNaive) {
-    for (std::size_t li = 0; li < s.landmark.size(); ++li) {
-      surface_block[li] =
-          problem.AddResidualBlock(adjust::SurfaceFactor::Create(&index, &s.model_offset, o.lookup, o.model, o.sigma0,
-                                                                 o.sigma1, cavity_labels ? &cavity_off[li] : nullptr),
-                                   nullptr, s.model.data(), s.landmark[li].data());
-      label(surface_block[li], ResidualLabel::kSurface, s.landmark_id[li]);
-    }
-  }
-
-  // ---- DVL residuals at the start (the initial alignment) ---------------------------
-  AdjustmentResult result;
-  result.options = o;
-  result.num_landmarks_skipped = skipped;
-  result.num_landmarks_off_model = off_model;
-  result.observations_rejected = behind;
-  auto dvl_residuals = [&](bool initial) {
-    std::size_t n = 0;
-    for (const DvlRecord& d : b.dvl) {
-      const int k = kf_index.at(d.keyframe);
-      for (int beam = 0; beam < 4; ++beam) {
-        const double r = d.range[static_cast<std::size_t>(beam)];
-        if (!DvlRecord::HasReturn(r)) continue;
-        const double pred = adjust::DvlRaycastFactor::PredictRange(
-            dvl_model, s.pose[static_cast<std::size_t>(k)].data(), &s.servo[static_cast<std::size_t>(k)],
-            s.model.data(), man.BeamDirection(beam));
-        if (initial) {
-          result.dvl.push_back({d.keyframe, beam + 1, r, r - pred, std::nan("")});
-        } else {
-          result.dvl[n++].final = r - pred;
-        }
-      }
-    }
-  };
-  {
-    // The initial alignment: initial poses and servo angles against x_gM_initial.
-    const std::vector<double> saved(s.model.begin(), s.model.end());
-    PoseToBlock(x_gM_initial * s.model_offset.Inverse(), s.model.data());
-    std::vector<std::array<double, kPoseSize>> saved_pose;
-    std::vector<double> saved_servo;
-    if (warm) {
-      saved_pose.assign(s.pose.begin(), s.pose.end());
-      saved_servo.assign(s.servo.begin(), s.servo.end());
-      for (int i = 0; i < K; ++i) {
-        PoseToBlock(Pose::FromVector(b.nav[static_cast<std::size_t>(i)].x_gv),
-                    s.pose[static_cast<std::size_t>(i)].data());
-        s.servo[static_cast<std::size_t>(i)] = b.nav[static_cast<std::size_t>(i)].servo;
-      }
-    }
-    dvl_residuals(true);
-    std::copy(saved.begin(), saved.end(), s.model.begin());
-    if (warm) {
-      std::copy(saved_pose.begin(), saved_pose.end(), s.pose.begin());
-      std::copy(saved_servo.begin(), saved_servo.end(), s.servo.begin());
-    }
-  }
-
-  // ---- solve ------------------------------------------------------------------------
-  ceres::Solver::Options so;
-  so.minimizer_type = ceres::TRUST_REGION;
-  so.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  const bool iterative = o.linear_solver == AdjustmentOptions::LinearSolver::kIterativeSchur;
-  so.linear_solver_type = iterative ? ceres::ITERATIVE_SCHUR : ceres::SPARSE_SCHUR;
-  so.preconditioner_type = ceres::SCHUR_JACOBI;
-  so.use_explicit_schur_complement = false;
-  so.max_num_iterations = o.max_iterations;
-  if (o.max_solver_seconds > 0) so.max_solver_time_in_seconds = o.max_solver_seconds;
-  so.function_tolerance = o.function_tolerance;
-  so.gradient_tolerance = o.gradient_tolerance;
-  so.parameter_tolerance = o.parameter_tolerance;
-  so.num_threads =
-      o.num_threads > 0 ? o.num_threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  so.minimizer_progress_to_stdout = o.verbose;
-  so.logging_type = o.verbose ? ceres::PER_MINIMIZER_ITERATION : ceres::SILENT;
-  so.update_state_every_iteration = true;
-  auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-  for (auto& l : s.landmark) ordering->AddElementToGroup(l.data(), 0);
-  for (int i = 0; i < K; ++i) {
-    ordering->AddElementToGroup(s.pose[static_cast<std::size_t>(i)].data(), 1);
-    ordering->AddElementToGroup(&s.servo[static_cast<std::size_t>(i)], 1);
-  }
-  ordering->AddElementToGroup(s.extrinsic.data(), 1);
-  ordering->AddElementToGroup(s.model.data(), 1);
-  so.linear_solver_ordering = ordering;
-  Observer observer(s, index, o, cavity_off, progress, result.iterations,
-                    static_cast<std::size_t>(problem.NumResiduals()));
-  so.callbacks.push_back(&observer);
-  progress.Update(0.1, std::string(SurfaceModelName(o.model)) + " adjustment: solving");
-  ceres::Solver::Summary summary;
-  std::vector<char> dropped(s.landmark.size(), 0);
-  double initial_cost = -1, solver_seconds = 0;
-  // The E-step by the cavity estimate (cavity_label.h, CavityLabelOff) over
-  // every landmark still in the problem; returns how many labels changed.
-  int label_rounds = 0;
-  auto cavity_step = [&]() -> std::size_t {
-    if (!cavity_labels || label_rounds >= o.label_rounds) return 0;
-    ++label_rounds;
-    const Pose x_gM_now = s.ModelPose();
-    std::size_t n = 0;
-    for (std::size_t li = 0; li < s.landmark.size(); ++li) {
-      if (dropped[li]) continue;
-      const Eigen::Vector3d l(s.landmark[li][0], s.landmark[li][1], s.landmark[li][2]);
-      const double h = adjust::SurfaceDeviation(index, x_gM_now, l, o.lookup);
-      const char off = adjust::CavityLabelOff(problem, s.landmark[li].data(), surface_block[li], h, cavity_off[li] != 0,
-                                              o.sigma0, o.sigma1);
-      n += off != cavity_off[li];
-      cavity_off[li] = off;
-    }
-    return n;
-  };
-  for (int round = 0;; ++round) {
-    observer.set_iteration_offset(result.iterations.empty() ? 0 : result.iterations.back().iteration);
-    ceres::Solve(so, &problem, &summary);
-    if (o.verbose) std::printf("%s\n", summary.FullReport().c_str());
-    if (!observer.stop_reason().empty()) {
-      throw InputError({b.directory, 0, 0, ""},
-                       "the adjustment stopped: " + observer.stop_reason() + ". The largest residual is " +
-                           LargestResidual(problem, block_ids, block_labels) + ": the likely input at fault");
-    }
-    if (summary.termination_type == ceres::USER_FAILURE || progress.Cancelled()) throw Cancelled();
-    if (summary.termination_type == ceres::FAILURE) {
-      throw std::runtime_error("bundle adjustment failed: " + summary.message);
-    }
-    if (initial_cost < 0) initial_cost = summary.initial_cost;
-    solver_seconds += summary.total_time_in_seconds;
-    const std::size_t relabelled = cavity_step();
-    if (round >= o.rejection_rounds) {
-      if (relabelled == 0) break;
-      progress.Update(observer.fraction(),
-                      std::to_string(relabelled) + " landmarks off the model by their cavity estimate; solving again");
-      continue;
-    }
-    // Remove observations beyond outlier_sigmas (the 2-D error in either camera).
-    const double limit2 = o.outlier_sigmas * o.outlier_sigmas;
-    std::size_t removed = 0;
-    std::vector<ReprojectionBlock> kept;
-    std::set<ceres::ResidualBlockId> gone;
-    for (const ReprojectionBlock& rb : reprojection) {
-      double r[4];
-      problem.EvaluateResidualBlock(rb.id, false, nullptr, r, nullptr);
-      const int n = problem.GetCostFunctionForResidualBlock(rb.id)->num_residuals();
-      bool bad = r[0] * r[0] + r[1] * r[1] > limit2;
-      if (n == 4) bad = bad || r[2] * r[2] + r[3] * r[3] > limit2;
-      if (bad) {
-        problem.RemoveResidualBlock(rb.id);
-        gone.insert(rb.id);
-        ++removed;
-      } else {
-        kept.push_back(rb);
-      }
-    }
-    // Drop landmarks left with too few views.
-    std::vector<std::set<std::int64_t>> views(s.landmark.size());
-    for (const ReprojectionBlock& rb : kept) views[rb.landmark].insert(rb.keyframe);
-    std::size_t lost = 0;
-    for (std::size_t li = 0; li < s.landmark.size(); ++li) {
-      if (dropped[li] || static_cast<int>(views[li].size()) >= o.min_observations) continue;
-      std::vector<ceres::ResidualBlockId> with;
-      problem.GetResidualBlocksForParameterBlock(s.landmark[li].data(), &with);
-      gone.insert(with.begin(), with.end());
-      problem.RemoveParameterBlock(s.landmark[li].data());
-      ordering->Remove(s.landmark[li].data());
-      dropped[li] = 1;
-      ++lost;
-    }
-    if (lost) {
-      std::vector<ReprojectionBlock> still;
-      for (const ReprojectionBlock& rb : kept) {
-        if (!dropped[rb.landmark]) still.push_back(rb);
-      }
-      kept.swap(still);
-    }
-    reprojection.swap(kept);
-    if (!gone.empty()) {  // keep the labels of the blocks still in the problem
-      std::size_t n = 0;
-      for (std::size_t i = 0; i < block_ids.size(); ++i) {
-        if (gone.count(block_ids[i])) continue;
-        block_ids[n] = block_ids[i];
-        block_labels[n++] = block_labels[i];
-      }
-      block_ids.resize(n);
-      block_labels.resize(n);
-    }
-    result.observations_rejected += static_cast<int>(removed);
-    result.num_landmarks_skipped += static_cast<int>(lost);
-    for (std::size_t li = 0; li < s.landmark.size(); ++li) s.landmark_views[li] = static_cast<int>(views[li].size());
-    if (removed == 0 && relabelled == 0) break;
-    progress.Update(observer.fraction(), "removed " + std::to_string(removed) + " outlying observations and " +
-                                             std::to_string(lost) + " landmarks, " + std::to_string(relabelled) +
-                                             " landmarks off the model by their cavity estimate; solving again");
-  }
-
-  // ---- results ------------------------------------------------------------------------
-  result.termination = std::string(ceres::TerminationTypeToString(summary.termination_type)) + ": " + summary.message;
-  result.converged = summary.termination_type == ceres::CONVERGENCE;
-  result.solver_seconds = solver_seconds;
-  result.initial_cost = initial_cost;
-  result.final_cost = summary.final_cost;
-  result.num_residual_blocks = summary.num_residual_blocks;
-  for (int i = 0; i < K; ++i) {
-    result.keyframes.push_back(b.nav[static_cast<std::size_t>(i)].keyframe);
-    result.poses.push_back(BlockToPose(s.pose[static_cast<std::size_t>(i)].data()).ToVector());
-    result.servo.push_back(s.servo[static_cast<std::size_t>(i)]);
-  }
-  result.x_gM = s.ModelPose().ToVector();
-  result.x_gM_initial = x_gM_initial.ToVector();
-  result.x_s_cT = BlockToPose(s.extrinsic.data()).ToVector();
-  result.x_s_cT_initial = extrinsic_nominal.ToVector();
-  const Pose x_gM = s.ModelPose();
-  // Landmark covariances (landmark_covariance.h), in the order of the kept landmarks.
-  std::vector<double*> kept_blocks;
-  std::vector<ceres::ResidualBlockId> kept_surface;
-  for (std::size_t i = 0; i < s.landmark.size(); ++i) {
-    if (dropped[i]) continue;
-    kept_blocks.push_back(s.landmark[i].data());
-    kept_surface.push_back(surface_block[i]);
-  }
-  if (o.covariance != CovarianceMethod::kNone) progress.Update(0.95, "landmark covariances");
-  const LandmarkCovariances cov =
-      ComputeLandmarkCovariances(problem, kept_blocks, o.covariance, so.num_threads, s.model.data(), &kept_surface);
-  result.covariance_method = cov.method;
-  result.covariance_note = cov.note;
-  result.covariance_seconds = cov.seconds;
-  result.covariance_cpu_seconds = cov.cpu_seconds;
-  result.covariance_reduced_size = cov.reduced_size;
-  result.covariance_factor_nonzeros = cov.factor_nonzeros;
-  for (std::size_t i = 0, kept_index = 0; i < s.landmark.size(); ++i) {
-    if (dropped[i]) continue;
-    LandmarkEstimate e;
-    e.id = s.landmark_id[i];
-    e.p = {s.landmark[i][0], s.landmark[i][1], s.landmark[i][2]};
-    e.deviation = adjust::SurfaceDeviation(index, x_gM, e.p, o.lookup);
-    e.covariance = cov.covariance[kept_index];
-    e.sigma_h =
-        std::isfinite(cov.sigma_h[kept_index])
-            ? cov.sigma_h[kept_index]
-            : DeviationSigma(e.covariance, x_gM.Rotate(index.OrthogonalSignedDistance(x_gM, e.p, o.lookup).normal));
-    ++kept_index;
-    e.label = cavity_off[i] ? 0 : MaxMixtureLabel(e.deviation, o.sigma0, o.sigma1);
-    result.num_labels_off_by_cavity += cavity_off[i];
-    e.observations = s.landmark_views[i];
-    result.landmarks.push_back(e);
-  }
-  dvl_residuals(false);
+  adjuster.BuildProblem(x_gM_initial);
+  adjuster.RecordInitialDvlResiduals(x_gM_initial, warm != nullptr);
+  adjuster.Solve();
+  AdjustmentResult result = adjuster.CollectResults(x_gM_initial);
   result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   // The count adjustment.json records: every round's iterations.
   const int iterations = result.iterations.empty() ? 0 : result.iterations.back().iteration;

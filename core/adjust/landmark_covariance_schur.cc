@@ -198,318 +198,381 @@ bool EvaluateJacobians(const ceres::Problem& problem, ceres::ResidualBlockId id,
   return problem.EvaluateResidualBlock(id, true, &cost, residuals.data(), ptr.data());
 }
 
-}  // namespace
+// One residual block of a landmark, evaluated: its parameter blocks and
+// their Jacobians.
+struct Evaluated {
+  std::vector<double*> params;
+  std::vector<RowMajorMatrix> jac;
+};
 
-bool ComputeSchurCovariances(ceres::Problem& problem, const std::vector<double*>& blocks, double* model,
-                             int num_threads, SchurCovariances* out, std::string* why) {
-  // ---- the variables: landmarks and reduced blocks -------------------------------------
-  std::unordered_map<const double*, int> landmark_of;
-  for (std::size_t i = 0; i < blocks.size(); ++i) {
-    if (!problem.HasParameterBlock(blocks[i]) || problem.IsParameterBlockConstant(blocks[i]) ||
-        problem.ParameterBlockTangentSize(blocks[i]) != 3 ||
-        !landmark_of.emplace(blocks[i], static_cast<int>(i)).second) {
-      *why = "landmark block " + std::to_string(i) + " is not a distinct variable 3-vector of the problem";
+// The computation as stages, in the order ComputeSchurCovariances runs them:
+// the variables, the residual blocks sorted by landmark, the reduced system
+// S (blocks without a landmark, then each landmark's Schur term), its
+// fill-reducing order, factor and selected inverse, and each landmark's
+// covariance from it. A stage returns false with why_ set when it fails.
+class SchurCovarianceSolver {
+ public:
+  SchurCovarianceSolver(ceres::Problem& problem, const std::vector<double*>& blocks, int num_threads, std::string* why)
+      : problem_(problem), blocks_(blocks), num_threads_(num_threads), why_(*why), system_(reduced_) {}
+
+  bool IndexVariables(double* model);
+  bool SortResidualBlocks();
+  bool AddBlocksWithoutLandmark();
+  bool AddLandmarkSchurTerms();
+  std::size_t OrderReducedBlocks();
+  bool FactorReducedSystem(int n, std::size_t* factor_nonzeros);
+  bool LandmarkCovariances(SchurCovariances* out);
+
+ private:
+  void LandmarkPartOf(std::size_t li, const std::vector<Evaluated>& ev, RowMajorMatrix* hcc);
+  bool SigmaBlock(int a, int b, double* dst, int ld) const;
+  void LandmarkCovariance(std::size_t li, SchurCovariances* out);
+
+  ceres::Problem& problem_;
+  const std::vector<double*>& blocks_;
+  const int num_threads_;
+  std::string& why_;
+  std::unordered_map<const double*, int> landmark_of_;
+  std::vector<ReducedBlock> reduced_;
+  std::unordered_map<const double*, int> reduced_of_;
+  int model_block_ = -1;
+  std::vector<std::vector<ceres::ResidualBlockId>> of_landmark_;
+  std::vector<ceres::ResidualBlockId> others_;  // residual blocks on the reduced blocks alone
+  ReducedSystem system_;
+  std::vector<LandmarkPart> parts_;
+  std::vector<char> failed_;  // per landmark
+  SelectedInverse z_;
+};
+
+// The variables: the landmarks (distinct 3-vectors of the problem) and the
+// reduced blocks (every other variable block with a tangent space).
+bool SchurCovarianceSolver::IndexVariables(double* model) {
+  for (std::size_t i = 0; i < blocks_.size(); ++i) {
+    if (!problem_.HasParameterBlock(blocks_[i]) || problem_.IsParameterBlockConstant(blocks_[i]) ||
+        problem_.ParameterBlockTangentSize(blocks_[i]) != 3 ||
+        !landmark_of_.emplace(blocks_[i], static_cast<int>(i)).second) {
+      why_ = "landmark block " + std::to_string(i) + " is not a distinct variable 3-vector of the problem";
       return false;
     }
   }
   std::vector<double*> all;
-  problem.GetParameterBlocks(&all);
-  std::vector<ReducedBlock> reduced;
-  std::unordered_map<const double*, int> reduced_of;
+  problem_.GetParameterBlocks(&all);
   for (double* p : all) {
-    if (landmark_of.count(p) || problem.IsParameterBlockConstant(p)) continue;
-    const int size = problem.ParameterBlockTangentSize(p);
+    if (landmark_of_.count(p) || problem_.IsParameterBlockConstant(p)) continue;
+    const int size = problem_.ParameterBlockTangentSize(p);
     if (size == 0) continue;
-    reduced_of.emplace(p, static_cast<int>(reduced.size()));
-    reduced.push_back({p, size});
+    reduced_of_.emplace(p, static_cast<int>(reduced_.size()));
+    reduced_.push_back({p, size});
   }
-  int model_block = -1;
   if (model) {
-    const auto it = reduced_of.find(model);
-    if (it != reduced_of.end()) model_block = it->second;
+    const auto it = reduced_of_.find(model);
+    if (it != reduced_of_.end()) model_block_ = it->second;
   }
+  return true;
+}
 
-  // ---- residual blocks: by landmark, or on the reduced blocks alone -------------------
+// The residual blocks: by landmark, or on the reduced blocks alone.
+bool SchurCovarianceSolver::SortResidualBlocks() {
   std::vector<ceres::ResidualBlockId> residuals;
-  problem.GetResidualBlocks(&residuals);
-  std::vector<std::vector<ceres::ResidualBlockId>> of_landmark(blocks.size());
-  std::vector<ceres::ResidualBlockId> others;
-  {
-    std::vector<double*> params;
-    for (const ceres::ResidualBlockId id : residuals) {
-      params.clear();
-      problem.GetParameterBlocksForResidualBlock(id, &params);
-      int lm = -1;
-      for (double* p : params) {
-        const auto it = landmark_of.find(p);
-        if (it == landmark_of.end()) continue;
-        if (lm >= 0 && lm != it->second) {
-          *why = "a residual block couples two landmarks (no block-diagonal H_ll)";
-          return false;
-        }
-        lm = it->second;
-      }
-      if (lm >= 0) {
-        of_landmark[static_cast<std::size_t>(lm)].push_back(id);
-      } else {
-        others.push_back(id);
-      }
-    }
-  }
-
-  ReducedSystem system(reduced);
-  // The residual blocks without a landmark (priors, odometry, DVL).
-  {
-    std::vector<double*> params;
-    std::vector<RowMajorMatrix> jac;
-    for (const ceres::ResidualBlockId id : others) {
-      params.clear();
-      problem.GetParameterBlocksForResidualBlock(id, &params);
-      if (!EvaluateJacobians(problem, id, params, jac)) {
-        *why = "a residual block failed to evaluate";
+  problem_.GetResidualBlocks(&residuals);
+  of_landmark_.assign(blocks_.size(), {});
+  std::vector<double*> params;
+  for (const ceres::ResidualBlockId id : residuals) {
+    params.clear();
+    problem_.GetParameterBlocksForResidualBlock(id, &params);
+    int lm = -1;
+    for (double* p : params) {
+      const auto it = landmark_of_.find(p);
+      if (it == landmark_of_.end()) continue;
+      if (lm >= 0 && lm != it->second) {
+        why_ = "a residual block couples two landmarks (no block-diagonal H_ll)";
         return false;
       }
-      for (std::size_t a = 0; a < params.size(); ++a) {
-        if (jac[a].size() == 0) continue;
-        for (std::size_t b = 0; b <= a; ++b) {
-          if (jac[b].size() == 0) continue;
-          const RowMajorMatrix m = jac[a].transpose() * jac[b];
-          system.Add(reduced_of.at(params[a]), reduced_of.at(params[b]), m.data(), static_cast<int>(m.cols()));
-        }
+      lm = it->second;
+    }
+    if (lm >= 0) {
+      of_landmark_[static_cast<std::size_t>(lm)].push_back(id);
+    } else {
+      others_.push_back(id);
+    }
+  }
+  return true;
+}
+
+// J^T J of the residual blocks without a landmark (priors, odometry, DVL) into S.
+bool SchurCovarianceSolver::AddBlocksWithoutLandmark() {
+  std::vector<double*> params;
+  std::vector<RowMajorMatrix> jac;
+  for (const ceres::ResidualBlockId id : others_) {
+    params.clear();
+    problem_.GetParameterBlocksForResidualBlock(id, &params);
+    if (!EvaluateJacobians(problem_, id, params, jac)) {
+      why_ = "a residual block failed to evaluate";
+      return false;
+    }
+    for (std::size_t a = 0; a < params.size(); ++a) {
+      if (jac[a].size() == 0) continue;
+      for (std::size_t b = 0; b <= a; ++b) {
+        if (jac[b].size() == 0) continue;
+        const RowMajorMatrix m = jac[a].transpose() * jac[b];
+        system_.Add(reduced_of_.at(params[a]), reduced_of_.at(params[b]), m.data(), static_cast<int>(m.cols()));
       }
     }
   }
-  // The landmarks, in batches: their residual blocks evaluated in order (one
-  // thread: Problem::EvaluateResidualBlock updates the shared parameter
-  // blocks' state), their parts in parallel, their Schur terms
-  // -H_cl H_ll^-1 H_lc (and J_c^T J_c) added in landmark order.
-  std::vector<LandmarkPart> parts(blocks.size());
-  std::vector<char> failed(blocks.size(), 0);
+  return true;
+}
+
+// Landmark li's part (H_ll^-1, G) from its evaluated residual blocks, and
+// *hcc = J_c^T J_c - H_cl G over the reduced blocks it touches; failed_[li]
+// when H_ll is singular.
+void SchurCovarianceSolver::LandmarkPartOf(std::size_t li, const std::vector<Evaluated>& ev, RowMajorMatrix* hcc) {
+  LandmarkPart& part = parts_[li];
+  for (const Evaluated& e : ev) {
+    for (std::size_t a = 0; a < e.params.size(); ++a) {
+      if (e.jac[a].size() == 0) continue;
+      const auto it = reduced_of_.find(e.params[a]);
+      if (it != reduced_of_.end()) part.blocks.push_back(it->second);
+    }
+  }
+  std::sort(part.blocks.begin(), part.blocks.end());
+  part.blocks.erase(std::unique(part.blocks.begin(), part.blocks.end()), part.blocks.end());
+  part.offsets.assign(1, 0);
+  for (int b : part.blocks) part.offsets.push_back(part.offsets.back() + reduced_[static_cast<std::size_t>(b)].size);
+  const int m = part.offsets.back();
+  Eigen::Matrix3d hll = Eigen::Matrix3d::Zero();
+  RowMajorMatrix hlc = RowMajorMatrix::Zero(3, m);
+  hcc->setZero(m, m);
+  std::vector<int> at;
+  for (const Evaluated& e : ev) {
+    const std::vector<double*>& params = e.params;
+    const std::vector<RowMajorMatrix>& jac = e.jac;
+    at.assign(params.size(), -1);  // local column of each variable reduced block
+    std::size_t lpos = params.size();
+    for (std::size_t a = 0; a < params.size(); ++a) {
+      if (params[a] == blocks_[li]) {
+        lpos = a;
+      } else if (jac[a].size() != 0) {
+        const int b = reduced_of_.at(params[a]);
+        const auto pos = std::lower_bound(part.blocks.begin(), part.blocks.end(), b) - part.blocks.begin();
+        at[a] = part.offsets[static_cast<std::size_t>(pos)];
+      }
+    }
+    const RowMajorMatrix& jl = jac[lpos];
+    hll += jl.transpose() * jl;
+    for (std::size_t a = 0; a < params.size(); ++a) {
+      if (at[a] < 0) continue;
+      const int na = static_cast<int>(jac[a].cols());
+      hlc.middleCols(at[a], na) += jl.transpose() * jac[a];
+      for (std::size_t b = 0; b < params.size(); ++b) {
+        if (at[b] < 0) continue;
+        hcc->block(at[a], at[b], na, jac[b].cols()) += jac[a].transpose() * jac[b];
+      }
+    }
+  }
+  const Eigen::LLT<Eigen::Matrix3d> llt(hll);
+  if (llt.info() != Eigen::Success) {
+    failed_[li] = 1;
+    return;
+  }
+  part.hll_inverse = llt.solve(Eigen::Matrix3d::Identity());
+  part.g = part.hll_inverse * hlc;
+  hcc->noalias() -= hlc.transpose() * part.g;
+}
+
+// The landmarks, in batches: their residual blocks evaluated in order (one
+// thread: Problem::EvaluateResidualBlock updates the shared parameter
+// blocks' state), their parts in parallel, their Schur terms
+// -H_cl H_ll^-1 H_lc (and J_c^T J_c) added to S in landmark order.
+bool SchurCovarianceSolver::AddLandmarkSchurTerms() {
+  parts_.resize(blocks_.size());
+  failed_.assign(blocks_.size(), 0);
   constexpr std::size_t kBatch = 2048;
-  struct Evaluated {
-    std::vector<double*> params;
-    std::vector<RowMajorMatrix> jac;
-  };
   std::vector<std::vector<Evaluated>> evaluated(kBatch);
   std::vector<RowMajorMatrix> local(kBatch);  // per landmark of the batch: J_c^T J_c - H_cl G
-  for (std::size_t first = 0; first < blocks.size(); first += kBatch) {
-    const std::size_t count = std::min(kBatch, blocks.size() - first);
+  for (std::size_t first = 0; first < blocks_.size(); first += kBatch) {
+    const std::size_t count = std::min(kBatch, blocks_.size() - first);
     for (std::size_t k = 0; k < count; ++k) {
       const std::size_t li = first + k;
       std::vector<Evaluated>& ev = evaluated[k];
-      ev.resize(of_landmark[li].size());
+      ev.resize(of_landmark_[li].size());
       for (std::size_t r = 0; r < ev.size(); ++r) {
         ev[r].params.clear();
-        problem.GetParameterBlocksForResidualBlock(of_landmark[li][r], &ev[r].params);
-        if (!EvaluateJacobians(problem, of_landmark[li][r], ev[r].params, ev[r].jac)) {
-          *why = "a residual block of landmark " + std::to_string(li) + " failed to evaluate";
+        problem_.GetParameterBlocksForResidualBlock(of_landmark_[li][r], &ev[r].params);
+        if (!EvaluateJacobians(problem_, of_landmark_[li][r], ev[r].params, ev[r].jac)) {
+          why_ = "a residual block of landmark " + std::to_string(li) + " failed to evaluate";
           return false;
         }
       }
     }
-    ParallelFor(count, num_threads, [&](std::size_t k) {
-      const std::size_t li = first + k;
-      LandmarkPart& part = parts[li];
-      const std::vector<Evaluated>& ev = evaluated[k];
-      for (const Evaluated& e : ev) {
-        for (std::size_t a = 0; a < e.params.size(); ++a) {
-          if (e.jac[a].size() == 0) continue;
-          const auto it = reduced_of.find(e.params[a]);
-          if (it != reduced_of.end()) part.blocks.push_back(it->second);
-        }
-      }
-      std::sort(part.blocks.begin(), part.blocks.end());
-      part.blocks.erase(std::unique(part.blocks.begin(), part.blocks.end()), part.blocks.end());
-      part.offsets.assign(1, 0);
-      for (int b : part.blocks) part.offsets.push_back(part.offsets.back() + reduced[static_cast<std::size_t>(b)].size);
-      const int m = part.offsets.back();
-      Eigen::Matrix3d hll = Eigen::Matrix3d::Zero();
-      RowMajorMatrix hlc = RowMajorMatrix::Zero(3, m);
-      RowMajorMatrix& hcc = local[k];
-      hcc.setZero(m, m);
-      std::vector<int> at;
-      for (const Evaluated& e : ev) {
-        const std::vector<double*>& params = e.params;
-        const std::vector<RowMajorMatrix>& jac = e.jac;
-        at.assign(params.size(), -1);  // local column of each variable reduced block
-        std::size_t lpos = params.size();
-        for (std::size_t a = 0; a < params.size(); ++a) {
-          if (params[a] == blocks[li]) {
-            lpos = a;
-          } else if (jac[a].size() != 0) {
-            const int b = reduced_of.at(params[a]);
-            const auto pos = std::lower_bound(part.blocks.begin(), part.blocks.end(), b) - part.blocks.begin();
-            at[a] = part.offsets[static_cast<std::size_t>(pos)];
-          }
-        }
-        const RowMajorMatrix& jl = jac[lpos];
-        hll += jl.transpose() * jl;
-        for (std::size_t a = 0; a < params.size(); ++a) {
-          if (at[a] < 0) continue;
-          const int na = static_cast<int>(jac[a].cols());
-          hlc.middleCols(at[a], na) += jl.transpose() * jac[a];
-          for (std::size_t b = 0; b < params.size(); ++b) {
-            if (at[b] < 0) continue;
-            hcc.block(at[a], at[b], na, jac[b].cols()) += jac[a].transpose() * jac[b];
-          }
-        }
-      }
-      const Eigen::LLT<Eigen::Matrix3d> llt(hll);
-      if (llt.info() != Eigen::Success) {
-        failed[li] = 1;
-        return;
-      }
-      part.hll_inverse = llt.solve(Eigen::Matrix3d::Identity());
-      part.g = part.hll_inverse * hlc;
-      hcc.noalias() -= hlc.transpose() * part.g;
-    });
+    ParallelFor(count, num_threads_, [&](std::size_t k) { LandmarkPartOf(first + k, evaluated[k], &local[k]); });
     for (std::size_t k = 0; k < count; ++k) {
       const std::size_t li = first + k;
-      if (failed[li]) {
-        *why = "landmark " + std::to_string(li) + " has a singular information block";
+      if (failed_[li]) {
+        why_ = "landmark " + std::to_string(li) + " has a singular information block";
         return false;
       }
-      const LandmarkPart& part = parts[li];
+      const LandmarkPart& part = parts_[li];
       const RowMajorMatrix& hcc = local[k];
       for (std::size_t a = 0; a < part.blocks.size(); ++a) {
         for (std::size_t b = 0; b <= a; ++b) {
-          system.Add(part.blocks[a], part.blocks[b], hcc.data() + part.offsets[a] * hcc.cols() + part.offsets[b],
-                     static_cast<int>(hcc.cols()));
+          system_.Add(part.blocks[a], part.blocks[b], hcc.data() + part.offsets[a] * hcc.cols() + part.offsets[b],
+                      static_cast<int>(hcc.cols()));
         }
       }
     }
   }
-  local.clear();
+  return true;
+}
 
-  // ---- a fill-reducing order of the reduced blocks (AMD on their graph) --------------
-  const int nb = static_cast<int>(reduced.size());
-  out->reduced_size = 0;
-  if (nb > 0) {
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(2 * system.pairs().size());
-    for (const auto& p : system.pairs()) {
-      t.emplace_back(p.a, p.b, 1.0);
-      if (p.a != p.b) t.emplace_back(p.b, p.a, 1.0);
-    }
-    Eigen::SparseMatrix<double> graph(nb, nb);
-    graph.setFromTriplets(t.begin(), t.end());
-    Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
-    Eigen::AMDOrdering<int>()(graph, order);  // order.indices()[new] = old
-    int column = 0;
-    for (int k = 0; k < nb; ++k) {
-      const int b = order.indices()[k];
-      reduced[static_cast<std::size_t>(b)].column = column;
-      column += reduced[static_cast<std::size_t>(b)].size;
-    }
-    out->reduced_size = static_cast<std::size_t>(column);
+// A fill-reducing order of the reduced blocks (AMD on their graph): sets
+// each block's first column and returns the columns of S.
+std::size_t SchurCovarianceSolver::OrderReducedBlocks() {
+  const int nb = static_cast<int>(reduced_.size());
+  if (nb == 0) return 0;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(2 * system_.pairs().size());
+  for (const auto& p : system_.pairs()) {
+    t.emplace_back(p.a, p.b, 1.0);
+    if (p.a != p.b) t.emplace_back(p.b, p.a, 1.0);
   }
-  const int n = static_cast<int>(out->reduced_size);
-
-  // ---- S (lower triangle, in that order), its factor and selected inverse ----------
-  SelectedInverse z;
-  if (n > 0) {
-    std::vector<Eigen::Triplet<double>> t;
-    for (const auto& p : system.pairs()) {
-      const ReducedBlock &ra = reduced[static_cast<std::size_t>(p.a)], &rb = reduced[static_cast<std::size_t>(p.b)];
-      const double* v = system.values(p);
-      const bool below = ra.column > rb.column;
-      for (int r = 0; r < ra.size; ++r) {
-        for (int c = 0; c < rb.size; ++c) {
-          if (p.a == p.b && c > r) continue;
-          const int row = ra.column + r, col = rb.column + c;
-          if (below || p.a == p.b) {
-            t.emplace_back(row, col, v[r * rb.size + c]);
-          } else {
-            t.emplace_back(col, row, v[r * rb.size + c]);
-          }
-        }
-      }
-    }
-    Eigen::SparseMatrix<double> s(n, n);
-    s.setFromTriplets(t.begin(), t.end());
-    t = {};
-    if (!z.Compute(s, why)) return false;
-    out->factor_nonzeros = z.factor_nonzeros();
+  Eigen::SparseMatrix<double> graph(nb, nb);
+  graph.setFromTriplets(t.begin(), t.end());
+  Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> order;
+  Eigen::AMDOrdering<int>()(graph, order);  // order.indices()[new] = old
+  int column = 0;
+  for (int k = 0; k < nb; ++k) {
+    const int b = order.indices()[k];
+    reduced_[static_cast<std::size_t>(b)].column = column;
+    column += reduced_[static_cast<std::size_t>(b)].size;
   }
+  return static_cast<std::size_t>(column);
+}
 
-  // Sigma_cc on the (a, b) blocks of the reduced system (row-major a x b).
-  auto sigma_block = [&](int a, int b, double* dst, int ld) -> bool {
-    const ReducedBlock &ra = reduced[static_cast<std::size_t>(a)], &rb = reduced[static_cast<std::size_t>(b)];
-    if (a == b) {
-      for (int r = 0; r < ra.size; ++r) {
-        for (int c = 0; c <= r; ++c) {
-          double v = 0;
-          if (!z.Get(ra.column + r, ra.column + c, &v)) return false;
-          dst[r * ld + c] = dst[c * ld + r] = v;
-        }
-      }
-      return true;
-    }
-    const bool below = ra.column > rb.column;  // stored: rows of the later block, columns of the earlier
-    const ReducedBlock& rows = below ? ra : rb;
-    const ReducedBlock& cols = below ? rb : ra;
-    double run[16];
-    if (rows.size > 16) return false;
-    for (int c = 0; c < cols.size; ++c) {
-      if (!z.GetColumnRun(rows.column, rows.size, cols.column + c, run)) return false;
-      for (int r = 0; r < rows.size; ++r) {
-        if (below) {
-          dst[r * ld + c] = run[r];
+// S (lower triangle, in that order), its factor and selected inverse.
+bool SchurCovarianceSolver::FactorReducedSystem(int n, std::size_t* factor_nonzeros) {
+  if (n == 0) return true;
+  std::vector<Eigen::Triplet<double>> t;
+  for (const auto& p : system_.pairs()) {
+    const ReducedBlock &ra = reduced_[static_cast<std::size_t>(p.a)], &rb = reduced_[static_cast<std::size_t>(p.b)];
+    const double* v = system_.values(p);
+    const bool below = ra.column > rb.column;
+    for (int r = 0; r < ra.size; ++r) {
+      for (int c = 0; c < rb.size; ++c) {
+        if (p.a == p.b && c > r) continue;
+        const int row = ra.column + r, col = rb.column + c;
+        if (below || p.a == p.b) {
+          t.emplace_back(row, col, v[r * rb.size + c]);
         } else {
-          dst[c * ld + r] = run[r];
+          t.emplace_back(col, row, v[r * rb.size + c]);
         }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> s(n, n);
+  s.setFromTriplets(t.begin(), t.end());
+  t = {};
+  if (!z_.Compute(s, &why_)) return false;
+  *factor_nonzeros = z_.factor_nonzeros();
+  return true;
+}
+
+// Sigma_cc on the (a, b) blocks of the reduced system (row-major a x b).
+bool SchurCovarianceSolver::SigmaBlock(int a, int b, double* dst, int ld) const {
+  const ReducedBlock &ra = reduced_[static_cast<std::size_t>(a)], &rb = reduced_[static_cast<std::size_t>(b)];
+  if (a == b) {
+    for (int r = 0; r < ra.size; ++r) {
+      for (int c = 0; c <= r; ++c) {
+        double v = 0;
+        if (!z_.Get(ra.column + r, ra.column + c, &v)) return false;
+        dst[r * ld + c] = dst[c * ld + r] = v;
       }
     }
     return true;
-  };
+  }
+  const bool below = ra.column > rb.column;  // stored: rows of the later block, columns of the earlier
+  const ReducedBlock& rows = below ? ra : rb;
+  const ReducedBlock& cols = below ? rb : ra;
+  double run[16];
+  if (rows.size > 16) return false;
+  for (int c = 0; c < cols.size; ++c) {
+    if (!z_.GetColumnRun(rows.column, rows.size, cols.column + c, run)) return false;
+    for (int r = 0; r < rows.size; ++r) {
+      if (below) {
+        dst[r * ld + c] = run[r];
+      } else {
+        dst[c * ld + r] = run[r];
+      }
+    }
+  }
+  return true;
+}
 
-  // ---- per landmark: Sigma_ll = H_ll^-1 + G Sigma_cc G^T, Sigma_lM = -G Sigma_cM ----
-  out->ll.assign(blocks.size(), Eigen::Matrix3d::Zero());
-  out->lm.assign(blocks.size(), RowMajorMatrix());
+// Landmark li: Sigma_ll = H_ll^-1 + G Sigma_cc G^T, Sigma_lM = -G Sigma_cM;
+// failed_[li] when a block it needs is off the factor's pattern.
+void SchurCovarianceSolver::LandmarkCovariance(std::size_t li, SchurCovariances* out) {
+  const LandmarkPart& part = parts_[li];
+  const int m = part.offsets.back();
+  RowMajorMatrix sigma(m, m);
+  for (std::size_t a = 0; a < part.blocks.size(); ++a) {
+    for (std::size_t b = 0; b <= a; ++b) {
+      double* dst = sigma.data() + part.offsets[a] * m + part.offsets[b];
+      if (!SigmaBlock(part.blocks[a], part.blocks[b], dst, m)) {
+        failed_[li] = 1;
+        return;
+      }
+      if (a == b) continue;
+      const int na = part.offsets[a + 1] - part.offsets[a], nbk = part.offsets[b + 1] - part.offsets[b];
+      sigma.block(part.offsets[b], part.offsets[a], nbk, na) =
+          sigma.block(part.offsets[a], part.offsets[b], na, nbk).transpose();
+    }
+  }
+  const RowMajorMatrix gs = part.g * sigma;  // G Sigma_cc = -Sigma_lc
+  const Eigen::Matrix3d ll = part.hll_inverse + gs * part.g.transpose();
+  out->ll[li] = 0.5 * (ll + ll.transpose());
+  const auto pos = std::lower_bound(part.blocks.begin(), part.blocks.end(), model_block_) - part.blocks.begin();
+  if (model_block_ >= 0 && pos < static_cast<std::ptrdiff_t>(part.blocks.size()) &&
+      part.blocks[static_cast<std::size_t>(pos)] == model_block_) {
+    const int off = part.offsets[static_cast<std::size_t>(pos)];
+    out->lm[li] = -gs.middleCols(off, reduced_[static_cast<std::size_t>(model_block_)].size);
+  }
+}
+
+// The model pose's own block, then every landmark's covariances (in parallel).
+bool SchurCovarianceSolver::LandmarkCovariances(SchurCovariances* out) {
+  out->ll.assign(blocks_.size(), Eigen::Matrix3d::Zero());
+  out->lm.assign(blocks_.size(), RowMajorMatrix());
   out->mm.resize(0, 0);
-  if (model_block >= 0) {
-    const int tm = reduced[static_cast<std::size_t>(model_block)].size;
+  if (model_block_ >= 0) {
+    const int tm = reduced_[static_cast<std::size_t>(model_block_)].size;
     out->mm.resize(tm, tm);
-    if (!sigma_block(model_block, model_block, out->mm.data(), tm)) {
-      *why = "the model pose's block is not on the factor's pattern";
+    if (!SigmaBlock(model_block_, model_block_, out->mm.data(), tm)) {
+      why_ = "the model pose's block is not on the factor's pattern";
       return false;
     }
   }
-  std::fill(failed.begin(), failed.end(), 0);
-  ParallelFor(blocks.size(), num_threads, [&](std::size_t li) {
-    const LandmarkPart& part = parts[li];
-    const int m = part.offsets.back();
-    RowMajorMatrix sigma(m, m);
-    for (std::size_t a = 0; a < part.blocks.size(); ++a) {
-      for (std::size_t b = 0; b <= a; ++b) {
-        double* dst = sigma.data() + part.offsets[a] * m + part.offsets[b];
-        if (!sigma_block(part.blocks[a], part.blocks[b], dst, m)) {
-          failed[li] = 1;
-          return;
-        }
-        if (a == b) continue;
-        const int na = part.offsets[a + 1] - part.offsets[a], nbk = part.offsets[b + 1] - part.offsets[b];
-        sigma.block(part.offsets[b], part.offsets[a], nbk, na) =
-            sigma.block(part.offsets[a], part.offsets[b], na, nbk).transpose();
-      }
-    }
-    const RowMajorMatrix gs = part.g * sigma;  // G Sigma_cc = -Sigma_lc
-    const Eigen::Matrix3d ll = part.hll_inverse + gs * part.g.transpose();
-    out->ll[li] = 0.5 * (ll + ll.transpose());
-    const auto pos = std::lower_bound(part.blocks.begin(), part.blocks.end(), model_block) - part.blocks.begin();
-    if (model_block >= 0 && pos < static_cast<std::ptrdiff_t>(part.blocks.size()) &&
-        part.blocks[static_cast<std::size_t>(pos)] == model_block) {
-      const int off = part.offsets[static_cast<std::size_t>(pos)];
-      out->lm[li] = -gs.middleCols(off, reduced[static_cast<std::size_t>(model_block)].size);
-    }
-  });
-  for (std::size_t li = 0; li < blocks.size(); ++li) {
-    if (failed[li]) {
-      *why = "landmark " + std::to_string(li) + "'s reduced blocks are not on the factor's pattern";
+  std::fill(failed_.begin(), failed_.end(), 0);
+  ParallelFor(blocks_.size(), num_threads_, [&](std::size_t li) { LandmarkCovariance(li, out); });
+  for (std::size_t li = 0; li < blocks_.size(); ++li) {
+    if (failed_[li]) {
+      why_ = "landmark " + std::to_string(li) + "'s reduced blocks are not on the factor's pattern";
       return false;
     }
   }
   return true;
+}
+
+}  // namespace
+
+bool ComputeSchurCovariances(ceres::Problem& problem, const std::vector<double*>& blocks, double* model,
+                             int num_threads, SchurCovariances* out, std::string* why) {
+  SchurCovarianceSolver solver(problem, blocks, num_threads, why);
+  if (!solver.IndexVariables(model) || !solver.SortResidualBlocks() || !solver.AddBlocksWithoutLandmark() ||
+      !solver.AddLandmarkSchurTerms()) {
+    return false;
+  }
+  out->reduced_size = solver.OrderReducedBlocks();
+  if (!solver.FactorReducedSystem(static_cast<int>(out->reduced_size), &out->factor_nonzeros)) return false;
+  return solver.LandmarkCovariances(out);
 }
 
 }  // namespace hull::adjust
