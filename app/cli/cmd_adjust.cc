@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "pipeline/pipeline.h"
+#include "results/adjustment_files.h"
 
 namespace hull::cli {
 namespace {
@@ -44,6 +45,8 @@ options:
   --evaluate           compare with the bundle's truth/ and print the figures
   --verbose            print Ceres' per-iteration log
   --quiet              no progress output
+  --force              write into an --out folder that holds files HullInspect
+                       did not write (they are kept; none is replaced)
 The initial model pose (and the prior of eq. 8) is the GICP alignment of the
 DVL returns to the mesh (see 'align').
 
@@ -52,13 +55,16 @@ timing.json): byte for byte with --threads 1, and to far below the survey's
 noise with more threads (Ceres sums in thread order). The bundle is
 validated first (docs/validation.md); an adjustment whose cost runs away
 stops with exit 3, naming the likely input. DIR is checked before any work
-(exit 2 when it cannot be written).
+(exit 2 when it cannot be written, or holds files HullInspect did not write
+and --force is not given); it is replaced as a whole: a run that fails or is
+killed leaves the previous folder whole, and results made from the previous
+adjustment inside it (a mapping/) go with it (docs/results-format.md).
 )";
 
 }  // namespace
 
 int RunAdjust(const CommandArgs& argv) {
-  Args a(argv, {"no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate", "verbose", "quiet"});
+  Args a(argv, {"no-servo", "no-extrinsic", "no-dvl", "no-align", "evaluate", "verbose", "quiet", "force"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
@@ -66,11 +72,11 @@ int RunAdjust(const CommandArgs& argv) {
   a.AllowOnly(
       {"mesh",           "mesh-scale",         "model",         "sigma0",     "sigma1",  "labels",   "lookup",
        "max-iterations", "function-tolerance", "linear-solver", "covariance", "threads", "no-servo", "no-extrinsic",
-       "no-dvl",         "no-align",           "evaluate",      "verbose",    "quiet",   "out"});
+       "no-dvl",         "no-align",           "evaluate",      "verbose",    "quiet",   "out",      "force"});
   if (a.positionals().size() != 1) throw UsageError("expected one survey bundle");
-  const std::string out = a.Get("out");
-  if (out.empty()) throw UsageError("--out DIR is required");
-  CheckOutputFolder(out);
+  const OutputFolder out{a.Get("out"), a.Has("force")};
+  if (out.path.empty()) throw UsageError("--out DIR is required");
+  CheckResultsFolder(out);
   AdjustmentOptions o;
   o.model = ParseSurfaceModel(a.Get("model", "max-mixture"));
   o.sigma0 = a.GetDouble("sigma0", o.sigma0);
@@ -118,12 +124,12 @@ int RunAdjust(const CommandArgs& argv) {
   SubProgress p(progress, a.Has("no-align") ? 0 : 0.1, 1.0);
   const AdjustmentResult r = RunAdjustmentStep(in, x_gM0, o, p);
   progress.Finish();
-  WriteAdjustmentResult(r, out);
+  SaveAdjustmentResults(r, out, NewResultsRun("adjust"));
   std::printf("%s: %zu iterations, cost %.6g -> %.6g, %.2f s (solver %.2f s), lambda=1 for %.1f %% of %zu landmarks\n",
               SurfaceModelName(o.model),
               r.iterations.empty() ? 0 : static_cast<std::size_t>(r.iterations.back().iteration), r.initial_cost,
               r.final_cost, r.seconds, r.solver_seconds, 100 * r.FractionOnSurface(), r.landmarks.size());
-  std::printf("termination: %s\nwrote %s\n", r.termination.c_str(), out.c_str());
+  std::printf("termination: %s\nwrote %s\n", r.termination.c_str(), out.path.c_str());
   if (a.Has("evaluate") && in.bundle.truth) {
     std::printf("%s", EvaluateAdjustment(in.bundle, in.mesh, r).ToString().c_str());
   }

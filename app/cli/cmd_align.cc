@@ -2,16 +2,16 @@
 // (GICP against the mesh; Ozog et al., Section 2.5).
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <optional>
 #include <string>
 
-#include "base/file_io.h"
-#include "base/json.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "geometry/mesh_io.h"
 #include "registration/model_alignment.h"
+#include "results/alignment_file.h"
 #include "survey/survey_import.h"
 
 namespace hull::cli {
@@ -40,79 +40,12 @@ options:
   --quiet            no progress output
 )";
 
-Json NumberOrNull(double v) { return std::isfinite(v) ? Json(v) : Json(); }
-
-Json VectorJson(const Vector6d& v) {
-  Json a = Json::Array();
-  for (int i = 0; i < 6; ++i) a.Push(Json(v[i]));
-  return a;
-}
-
 std::string PoseText(const Pose& x) {
   const Vector6d v = x.ToVector();
   char buf[200];
   std::snprintf(buf, sizeof(buf), "[%.4f, %.4f, %.4f, %.5f, %.5f, %.5f]  (angles %.3f, %.3f, %.3f deg)", v[0], v[1],
                 v[2], v[3], v[4], v[5], v[3] * 180 / M_PI, v[4] * 180 / M_PI, v[5] * 180 / M_PI);
   return buf;
-}
-
-Json ResultJson(const ModelAlignment& a, const std::string& bundle, const std::string& mesh, double scale,
-                bool from_guess) {
-  Json j = Json::Object();
-  j.Set("format", "hull-alignment");
-  j.Set("version", 1);
-  j.Set("bundle", bundle);
-  j.Set("mesh", mesh);
-  j.Set("mesh_scale", scale);
-  j.Set("x_gM", VectorJson(a.x_gM.ToVector()));
-  j.Set("initial_x_gM", VectorJson(a.initial_x_gM.ToVector()));
-  j.Set("initial_from", from_guess ? "model_pose_guess" : "coarse_search");
-  Json g = Json::Object();
-  g.Set("status", GicpStatusName(a.gicp.status));
-  g.Set("converged", a.gicp.converged);
-  g.Set("iterations", a.gicp.iterations);
-  g.Set("fitness", a.gicp.fitness);
-  g.Set("correspondences", static_cast<std::int64_t>(a.gicp.correspondences));
-  g.Set("source_points", static_cast<std::int64_t>(a.gicp.source_points));
-  g.Set("target_points", static_cast<std::int64_t>(a.gicp.target_points));
-  j.Set("gicp", g);
-  j.Set("constrained_directions", a.constrained_directions);
-  j.Set("observability", VectorJson(a.observability));
-  Json d = Json::Object();
-  d.Set("returns", static_cast<std::int64_t>(a.dvl_points));
-  d.Set("mesh_samples", static_cast<std::int64_t>(a.target_points));
-  d.Set("residual_beams", static_cast<std::int64_t>(a.residual_beams));
-  d.Set("residual_rms_before", a.residual_rms_before);
-  d.Set("residual_rms_after", a.residual_rms_after);
-  d.Set("surface_rms_before", a.surface_rms_before);
-  d.Set("surface_rms_after", a.surface_rms_after);
-  j.Set("dvl", d);
-  if (a.coarse.ran) {
-    Json c = Json::Object();
-    c.Set("hypotheses", static_cast<std::int64_t>(a.coarse.hypotheses));
-    c.Set("refined", static_cast<std::int64_t>(a.coarse.refined));
-    c.Set("tied", static_cast<std::int64_t>(a.coarse.tied));
-    c.Set("tied_position_spread", a.coarse.tied_position_spread);
-    c.Set("tied_heading_spread_deg", a.coarse.tied_heading_spread_deg);
-    c.Set("best_score", a.coarse.best_score);
-    c.Set("start", VectorJson(a.coarse.start.ToVector()));
-    j.Set("coarse_search", c);
-  }
-  // One row per beam with a return: keyframe, beam (1..4 as in dvl.csv),
-  // measured range, residual before, residual after (null: no hit).
-  Json rows = Json::Array();
-  for (const DvlBeamResidual& r : a.residuals) {
-    Json row = Json::Array();
-    row.Push(Json(r.keyframe));
-    row.Push(Json(r.beam + 1));
-    row.Push(Json(r.measured));
-    row.Push(NumberOrNull(r.before));
-    row.Push(NumberOrNull(r.after));
-    rows.Push(row);
-  }
-  j.Set("residual_columns", Json::ArrayOf(std::vector<std::string>{"keyframe", "beam", "measured", "before", "after"}));
-  j.Set("residuals", rows);
-  return j;
 }
 
 }  // namespace
@@ -162,7 +95,8 @@ int RunAlign(const CommandArgs& argv) {
   }
   if (a.Has("out")) {
     const std::string out = a.Get("out");
-    WriteFileAtomic(out, ResultJson(r, dir, mesh_path, lo.scale, guess.has_value()).Dump() + "\n");
+    namespace fs = std::filesystem;
+    WriteAlignment(r, {fs::absolute(bundle.directory).string(), fs::absolute(mesh_path).string(), lo.scale}, out);
     std::printf("wrote %s\n", out.c_str());
   }
   if (!(r.gicp.status == GicpStatus::kConverged || r.gicp.status == GicpStatus::kMaxIterations)) {

@@ -2,10 +2,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "base/progress.h"
 #include "cli/args.h"
 #include "cli/commands.h"
-#include "geometry/mesh_io.h"
-#include "mapping/survey_compare.h"
+#include "results/compare_files.h"
 
 namespace hull::cli {
 namespace {
@@ -45,25 +45,34 @@ options:
   --max-misplacement M the most one top may lie apart between the two maps
                        before registration (default 5)
   --no-register        compare in M as the two results have it
+  --force              write into an --out folder that holds files HullInspect
+                       did not write (they are kept; none is replaced)
+
+A and B must each hold one run's mapping (their files unchanged since),
+mapped against the same CAD mesh, and --mesh must be that mesh, where their
+manifests record it (exit 3 otherwise, naming the files).
 )";
 
-std::string MappingFolder(const std::string& results) {
-  if (const auto f = FindMappingResults(results)) return *f;
-  throw UsageError("'" + results + "' holds neither mapping results nor a pipeline's mapping/");
+void CheckMappingFolder(const std::string& results) {
+  if (!FindMappingResults(results)) {
+    throw UsageError("'" + results + "' holds neither mapping results nor a pipeline's mapping/");
+  }
 }
 
 }  // namespace
 
 int RunCompare(const CommandArgs& argv) {
-  Args a(argv, {"help", "no-register"});
+  Args a(argv, {"help", "no-register", "force"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
   a.AllowOnly({"out", "mesh", "mesh-scale", "peak-spacing", "peak-reach", "match-radius", "change", "k",
-               "max-misplacement", "no-register"});
+               "max-misplacement", "no-register", "force"});
   if (a.positionals().size() != 2) throw UsageError("expected two results folders, A and B");
   if (!a.Has("out")) throw UsageError("--out DIR is required");
+  const OutputFolder out{a.Get("out"), a.Has("force")};
+  CheckResultsFolder(out);
   SurveyCompareOptions o;
   o.peak_spacing = a.GetDouble("peak-spacing", o.peak_spacing);
   o.peak_reach = a.GetDouble("peak-reach", o.peak_reach);
@@ -73,15 +82,13 @@ int RunCompare(const CommandArgs& argv) {
   o.max_misplacement = a.GetDouble("max-misplacement", o.max_misplacement);
   o.register_surveys = !a.Has("no-register");
   o.Check();
-  const MappingResultsOnDisk ra = ReadMappingResultsForCompare(MappingFolder(a.positionals()[0]));
-  const MappingResultsOnDisk rb = ReadMappingResultsForCompare(MappingFolder(a.positionals()[1]));
-  const std::string mesh = a.Get("mesh", ra.mesh_path);
-  if (mesh.empty()) throw UsageError("A's mapping.json names no mesh: give --mesh");
-  MeshLoadOptions lo;
-  lo.scale = a.GetDouble("mesh-scale", 1.0);
-  const TriangleMesh cad = LoadMesh(mesh, lo);
-  const SurveyComparison c = CompareSurveys(cad, ra.model, ra.objects, rb.model, rb.objects, o);
-  WriteSurveyComparison(c, a.Get("out"));
+  CheckMappingFolder(a.positionals()[0]);
+  CheckMappingFolder(a.positionals()[1]);
+  NullProgress quiet;
+  const SurveyComparisonRun run = RunSurveyComparison(a.positionals()[0], a.positionals()[1], a.Get("mesh", ""),
+                                                      a.GetDouble("mesh-scale", 1.0), o, quiet);
+  SaveComparisonResults(run, out, NewResultsRun("compare"));
+  const SurveyComparison& c = run.comparison;
   const SurveyRegistration& r = c.registration;
   if (r.registered) {
     std::printf("B registered to A by %d objects' tops in common (%d without): %.2f deg, %.3f m, rms %.3f m\n",

@@ -5,6 +5,7 @@
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/console_progress.h"
+#include "results/front_end_files.h"
 #include "survey/survey_io.h"
 #include "vision/front_end.h"
 

@@ -2,12 +2,13 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "adjust/adjust_result.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "geometry/mesh_io.h"
 #include "mapping/mapper.h"
+#include "results/adjustment_files.h"
+#include "results/mapping_files.h"
 #include "survey/survey_import.h"
 
 namespace hull::cli {
@@ -58,13 +59,18 @@ options:
   --mesh-scale S       scale applied to --mesh on load (default: the recorded one)
   --threads N          0: all cores (default)
   --quiet              no progress output
-See docs/mapping.md for what the parameters do.
+  --force              write into an --out folder that holds files HullInspect
+                       did not write (they are kept; none is replaced)
+See docs/mapping.md for what the parameters do. The output folder is
+replaced as a whole (docs/results-format.md). RESULTS must hold one run's
+adjustment (its files unchanged since), and --bundle the survey it was
+computed from (exit 3 otherwise, naming both).
 )";
 
 }  // namespace
 
 int RunMap(const CommandArgs& argv) {
-  Args a(argv, {"quiet", "help", "peak-fit", "no-peak-fit", "no-seed-across-views"});
+  Args a(argv, {"quiet", "help", "peak-fit", "no-peak-fit", "no-seed-across-views", "force"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
@@ -72,11 +78,12 @@ int RunMap(const CommandArgs& argv) {
   a.AllowOnly({"out",        "tau",      "grow-height",  "alpha",     "eps",         "min-points",
                "h-min",      "min-area", "min-features", "min-views", "refine-edge", "fusion-radius",
                "fusion",     "support",  "peak-band",    "stations",  "bundle",      "mesh",
-               "mesh-scale", "threads",  "quiet",        "peak-fit",  "no-peak-fit", "no-seed-across-views"});
+               "mesh-scale", "threads",  "quiet",        "peak-fit",  "no-peak-fit", "no-seed-across-views",
+               "force"});
   if (a.positionals().size() != 1) throw UsageError("expected one adjustment results folder");
   const std::string results = a.positionals()[0];
-  const std::string out = a.Get("out", (std::filesystem::path(results) / "mapping").string());
-  if (a.Has("out")) CheckOutputFolder(out);  // the default lies in the results folder, read first
+  const OutputFolder out{a.Get("out", (std::filesystem::path(results) / "mapping").string()), a.Has("force")};
+  CheckResultsFolder(out);
   MappingOptions o;
   o.tau = a.GetDouble("tau", o.tau);
   o.shape_grow_height = a.GetDouble("grow-height", o.shape_grow_height);
@@ -109,6 +116,7 @@ int RunMap(const CommandArgs& argv) {
   const std::string bundle_path = a.Get("bundle", adjustment.bundle_path);
   if (bundle_path.empty()) throw UsageError("adjustment.json names no survey bundle: give --bundle");
   const SurveyBundle bundle = OpenSurveyBundle(bundle_path);
+  CheckBundleOfResults((std::filesystem::path(results) / "adjustment.json").string(), bundle.directory);
   const std::string mesh_path = a.Get("mesh", adjustment.mesh_path);
   if (mesh_path.empty()) throw UsageError("adjustment.json names no mesh: give --mesh");
   MeshLoadOptions lo;
@@ -122,7 +130,7 @@ int RunMap(const CommandArgs& argv) {
   r.inputs = {{"adjustment", fs::absolute(results).string()},
               {"bundle", fs::absolute(bundle_path).string()},
               {"mesh", fs::absolute(mesh_path).string()}};
-  WriteMappingResult(r, out);
+  SaveMappingResults(r, out, NewResultsRun("map"));
 
   const MappingSummary& s = r.summary;
   std::printf("%zu keyframes: %zu shapes (%zu triangles) from %zu of %zu features with |d| > %.3g m\n", s.keyframes,
@@ -156,7 +164,7 @@ int RunMap(const CommandArgs& argv) {
   std::printf("zones: %d inspected (%.1f of %.1f m^2), %d with macrofouling, %zu uninspected\n", inspected,
               s.inspected_area, s.hull_area, fouled, r.zones.size() - static_cast<std::size_t>(inspected));
   std::printf("%.2f s (shapes %.2f, refinement %.2f, fusion %.2f, inspection %.2f)\nwrote %s\n", s.seconds.total,
-              s.seconds.shapes, s.seconds.refinement, s.seconds.fusion, s.seconds.inspection, out.c_str());
+              s.seconds.shapes, s.seconds.refinement, s.seconds.fusion, s.seconds.inspection, out.path.c_str());
   return kExitOk;
 }
 

@@ -3,12 +3,13 @@
 #include <filesystem>
 #include <memory>
 
-#include "adjust/adjust_result.h"
 #include "cli/args.h"
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "geometry/mesh_io.h"
 #include "mosaic/mosaic_io.h"
+#include "results/adjustment_files.h"
+#include "results/mosaic_files.h"
 #include "simulate/true_scene.h"
 #include "survey/survey_import.h"
 
@@ -51,28 +52,36 @@ options:
   --no-truth           do not score against the bundle's truth
   --threads N          0: all cores (default)
   --quiet              no progress output
+  --force              write into an --out folder that holds files HullInspect
+                       did not write (they are kept; none is replaced)
+
+RESULTS must hold one run's adjustment and a model mapped from it (their
+files unchanged since), and the bundle must be the survey it was adjusted
+from.
 
 exit codes: 0 written, 2 bad command line (also: RESULTS does not exist,
---out names a file), 3 RESULTS or the bundle unreadable, 130 cancelled.
+--out names a file or a folder of files HullInspect did not write), 3
+RESULTS or the bundle unreadable, a mixed RESULTS folder, or a bundle that
+is not RESULTS' survey (both named), 130 cancelled.
 )";
 
 }  // namespace
 
 int RunMosaic(const CommandArgs& argv) {
-  Args a(argv, {"quiet", "help", "no-truth"});
+  Args a(argv, {"quiet", "help", "no-truth", "force"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
   a.AllowOnly({"out", "bundle", "texel", "max-range", "max-incidence", "seam-weight", "feather", "normalise",
-               "attenuation", "backscatter", "no-truth", "threads", "quiet"});
+               "attenuation", "backscatter", "no-truth", "threads", "quiet", "force"});
   if (a.positionals().size() != 1) throw UsageError("expected one results folder");
   namespace fs = std::filesystem;
   const std::string results = a.positionals()[0];
   std::error_code ec;
   if (!fs::exists(results, ec)) throw UsageError("RESULTS '" + results + "': no such folder");
-  const std::string out = a.Get("out", (fs::path(results) / "mosaic").string());
-  CheckOutputFolder(out);
+  const OutputFolder out{a.Get("out", (fs::path(results) / "mosaic").string()), a.Has("force")};
+  CheckResultsFolder(out);
 
   MosaicOptions o;
   o.texel_size = a.GetDouble("texel", o.texel_size);
@@ -100,6 +109,7 @@ int RunMosaic(const CommandArgs& argv) {
   const std::string bundle_path = a.Get("bundle", adjustment.bundle_path);
   if (bundle_path.empty()) throw UsageError("adjustment.json names no survey bundle: give --bundle");
   const SurveyBundle bundle = OpenSurveyBundle(bundle_path);
+  CheckBundleOfResults((fs::path(src.adjustment_dir) / "adjustment.json").string(), bundle.directory);
   MeshLoadOptions lo;  // the model as the mapping wrote it
   lo.weld = false;
   lo.orient_outward = false;
@@ -116,7 +126,7 @@ int RunMosaic(const CommandArgs& argv) {
   r.inputs = {{"adjustment", fs::absolute(src.adjustment_dir).string()},
               {"model", fs::absolute(src.model_path).string()},
               {"bundle", fs::absolute(bundle_path).string()}};
-  WriteMosaic(r, out);
+  SaveMosaicResults(r, out, NewResultsRun("mosaic"));
 
   const MosaicSummary& s = r.summary;
   std::printf("%zu of %zu faces textured (%.2f m^2) from %zu of %zu images; %zu seam edges of %zu\n", s.faces_textured,
@@ -132,7 +142,7 @@ int RunMosaic(const CommandArgs& argv) {
   }
   std::printf("%.2f s (visibility %.2f, labelling %.2f, gains %.2f, texturing %.2f, scoring %.2f)\nwrote %s\n",
               s.seconds.total, s.seconds.visibility, s.seconds.labelling, s.seconds.gains, s.seconds.texturing,
-              s.seconds.scoring, out.c_str());
+              s.seconds.scoring, out.path.c_str());
   return kExitOk;
 }
 

@@ -6,7 +6,7 @@
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "pipeline/pipeline.h"
-#include "simulate/survey_simulator.h"
+#include "results/pipeline_job.h"
 
 namespace hull::cli {
 namespace {
@@ -36,33 +36,37 @@ options:
                        'features --help')
   --covariance M       landmark covariances and sigma of h: full (default),
                        conditional (poses held fixed; cheap) or none
+  --force              write into an --out folder that holds files HullInspect
+                       did not write (they are kept; none is replaced)
   --quiet
+
+DIR must be new, empty or a results folder HullInspect wrote (checked before
+any work, exit 2); it is replaced as a whole, and the user's own files in it
+are kept (docs/results-format.md).
 )";
 
 }  // namespace
 
 int RunPipeline(const CommandArgs& argv) {
-  Args a(argv, {"demo", "compare-models", "quiet", "peak-fit", "no-peak-fit"});
+  Args a(argv, {"demo", "compare-models", "quiet", "peak-fit", "no-peak-fit", "force"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"demo",           "mesh",       "mesh-scale",  "model", "sigma0",   "sigma1",      "labels",
-               "compare-models", "tau",        "grow-height", "alpha", "eps",      "min-points",  "max-iterations",
-               "threads",        "covariance", "quiet",       "out",   "peak-fit", "no-peak-fit", "max-features"});
-  const std::string out = a.Get("out");
-  if (out.empty()) throw UsageError("--out DIR is required");
-  CheckOutputFolder(out);
-  ConsoleProgress progress(a.Has("quiet"));
-  std::string bundle_dir;
-  if (a.Has("demo")) {
+  a.AllowOnly({"demo",       "mesh",           "mesh-scale",   "model",       "sigma0", "sigma1",
+               "labels",     "compare-models", "tau",          "grow-height", "alpha",  "eps",
+               "min-points", "max-iterations", "threads",      "covariance",  "quiet",  "out",
+               "peak-fit",   "no-peak-fit",    "max-features", "force"});
+  if (!a.Has("out") || a.Get("out").empty()) throw UsageError("--out DIR is required");
+  const OutputFolder out{a.Get("out"), a.Has("force")};
+  CheckResultsFolder(out);
+  PipelineSource source;
+  source.demo = a.Has("demo");
+  if (source.demo) {
     if (!a.positionals().empty()) throw UsageError("--demo takes no bundle argument");
-    bundle_dir = (std::filesystem::path(out) / "demo-survey").string();
-    SubProgress p(progress, 0, 0.05);
-    WriteSimulatedSurvey(SimulateSurvey(SurveyPreset("demo"), p), bundle_dir);
   } else {
     if (a.positionals().size() != 1) throw UsageError("expected one survey bundle (or --demo)");
-    bundle_dir = a.positionals()[0];
+    source.bundle = a.positionals()[0];
   }
   PipelineOptions o;
   o.adjustment.model = ParseSurfaceModel(a.Get("model", "max-mixture"));
@@ -82,23 +86,21 @@ int RunPipeline(const CommandArgs& argv) {
   if (a.Has("peak-fit")) o.mapping.peak_fit = true;
   if (a.Has("no-peak-fit")) o.mapping.peak_fit = false;
   o.Check();
-  FrontEndOptions front_end;
-  front_end.threads = o.adjustment.num_threads;
-  front_end.detection.max_features = static_cast<int>(a.GetInt("max-features", front_end.detection.max_features));
-  front_end.Check();
-  const double start = a.Has("demo") ? 0.05 : 0.0;
-  // A version 2 bundle without features.csv: the visual front end first.
-  SubProgress pf(progress, start, start + 0.2);
-  const PipelineInputs in =
-      LoadPipelineInputs(bundle_dir, a.Get("mesh", ""), a.GetDouble("mesh-scale", 1.0), &pf, front_end);
+  source.front_end.threads = o.adjustment.num_threads;
+  source.front_end.detection.max_features =
+      static_cast<int>(a.GetInt("max-features", source.front_end.detection.max_features));
+  source.front_end.Check();
+  source.mesh = a.Get("mesh", "");
+  source.mesh_scale = a.GetDouble("mesh-scale", 1.0);
+  ConsoleProgress progress(a.Has("quiet"));
+  const PipelineRun job = RunPipelineJob(source, o, out, "run", progress);
+  progress.Finish();
+  const PipelineInputs& in = job.inputs;
+  const PipelineResult& r = job.result;
   if (in.front_end) {
-    std::printf("\nfront end: %d landmarks, %zu observations from the images (%.1f s)\n", in.front_end->landmarks,
+    std::printf("front end: %d landmarks, %zu observations from the images (%.1f s)\n", in.front_end->landmarks,
                 in.front_end->features.size(), in.front_end->seconds);
   }
-  SubProgress p(progress, in.front_end ? start + 0.2 : start, 1.0);
-  const PipelineResult r = hull::RunPipeline(in, o, p);
-  WritePipelineResult(in, r, out);
-  progress.Finish();
   std::printf("alignment: DVL residual RMS %.4f -> %.4f m (%d of 6 directions fixed by the returns)\n",
               r.alignment.residual_rms_before, r.alignment.residual_rms_after, r.alignment.constrained_directions);
   std::printf("%s adjustment: %zu landmarks, lambda=1 for %.1f %%, %.1f s, %s\n",
@@ -107,9 +109,9 @@ int RunPipeline(const CommandArgs& argv) {
   if (r.evaluation) std::printf("%s", r.evaluation->ToString().c_str());
   if (r.mapping) {
     std::printf("mapping: %zu shapes, %zu objects detected; remeshed model %s\n", r.mapping->summary.shapes,
-                r.mapping->objects.size(), (std::filesystem::path(out) / "mapping" / "model.ply").c_str());
+                r.mapping->objects.size(), (std::filesystem::path(job.folder) / "mapping" / "model.ply").c_str());
   }
-  std::printf("wrote %s\n", out.c_str());
+  std::printf("wrote %s\n", job.folder.c_str());
   return kExitOk;
 }
 

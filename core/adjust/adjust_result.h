@@ -1,10 +1,6 @@
-// What the model-assisted bundle adjustment produces, and its on-disk format
-// (docs/results-format.md, "adjustment results, version 1"): a folder with
-//   adjustment.json   format "hull-adjustment", version, model, options,
-//                     summary, x_gM, x_s_cT (initial and final), iteration log
-//   poses.csv         keyframe,x,y,z,roll,pitch,yaw,servo          (x_gv in g)
-//   landmarks.csv     landmark,x,y,z,label,deviation,observations  (in g)
-//   dvl_residuals.csv keyframe,beam,measured,initial,final         (m; empty = no hit)
+// What the model-assisted bundle adjustment produces. Its files (a folder
+// with adjustment.json, timing.json, poses.csv, landmarks.csv and
+// dvl_residuals.csv) are written and read by results/adjustment_files.h.
 #pragma once
 
 #include <cmath>
@@ -88,9 +84,5 @@ struct AdjustmentResult {
   // The fraction of landmarks with lambda = 1 at the end.
   double FractionOnSurface() const;
 };
-
-void WriteAdjustmentResult(const AdjustmentResult& result, const std::string& dir);
-// Throws InputError naming file, line and field.
-AdjustmentResult ReadAdjustmentResult(const std::string& dir);
 
 }  // namespace hull

@@ -1,13 +1,6 @@
-// What model-assisted mapping produces, and its on-disk format
-// (docs/results-format.md, "mapping results, version 1"): a folder with
-//   mapping.json   format "hull-mapping", version, inputs, options, hull
-//                  axes, summary (counts, areas, timings)
-//   model.ply      the fused, locally remeshed model in M (binary; per-vertex
-//                  "deviation" in m and "fusions", the hits of eq. 15)
-//   model.obj, model.stl   the same geometry
-//   objects.csv, objects.json   the detected objects
-//   zones.csv, zones.json       the fouling assessment per hull zone
-//   shapes.csv     one row per shape of Algorithm 1 (keyframe, size, deviations)
+// What model-assisted mapping produces. Its files (mapping.json, the
+// remeshed model as PLY/OBJ/STL, objects and zones as CSV and JSON,
+// shapes.csv) are written and read by results/mapping_files.h.
 #pragma once
 
 #include <string>
@@ -64,16 +57,5 @@ struct MappingResult {
   std::vector<ZoneAssessment> zones;
   MappingSummary summary;
 };
-
-// Writes the folder described above, replacing it as a whole
-// (WriteDirectoryAtomic: a failed or killed run leaves the previous results
-// intact). Throws std::runtime_error when a file cannot be written.
-void WriteMappingResult(const MappingResult& result, const std::string& dir);
-
-// The texts of objects.csv and zones.csv as WriteMappingResult writes them
-// (docs/results-format.md); also what the GUI exports of the mapping on
-// screen.
-std::string ObjectsCsv(const MappingResult& result);
-std::string ZonesCsv(const MappingResult& result);
 
 }  // namespace hull

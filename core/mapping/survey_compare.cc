@@ -2,24 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <stdexcept>
 
-#include "base/atomic_directory.h"
-#include "base/csv.h"
 #include "base/error.h"
-#include "base/file_io.h"
-#include "base/json.h"
 #include "geometry/mesh_index.h"
-#include "geometry/mesh_io.h"
 #include "geometry/point_index.h"
 #include "geometry/vertex_regions.h"
 
 namespace hull {
 namespace {
-
-namespace fs = std::filesystem;
 
 const std::vector<double>& Deviation(const TriangleMesh& m, const char* which) {
   const std::vector<double>* d = m.FindScalar("deviation");
@@ -31,11 +23,6 @@ const std::vector<double>& Deviation(const TriangleMesh& m, const char* which) {
 
 double SigmaAt(const std::vector<double>* sigma, std::size_t i) {
   return sigma && i < sigma->size() ? (*sigma)[i] : std::numeric_limits<double>::quiet_NaN();
-}
-
-Eigen::Vector3d Vec3(const JsonReader& r, const char* key) {
-  const std::vector<double> v = r.Numbers(key, 3);
-  return {v[0], v[1], v[2]};
 }
 
 // A model vertex's detected object (index into the objects; -1: none).
@@ -419,142 +406,6 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   }
   progress.Update(1.0, "compared: " + std::to_string(out.objects.size()) + " objects");
   return out;
-}
-
-MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir) {
-  MappingResultsOnDisk out;
-  const fs::path d(dir);
-  MeshLoadOptions lo;  // as written: no welding, no reorientation
-  lo.weld = false;
-  lo.orient_outward = false;
-  const std::string mpath = (d / "model.ply").string();
-  out.model = LoadMesh(mpath, lo);
-  if (!out.model.FindScalar("deviation")) {
-    throw InputError({mpath, 0, 0, "deviation"}, "the model has no per-vertex deviation");
-  }
-  const std::string opath = (d / "objects.json").string();
-  const Json odoc = Json::Parse(ReadFileToString(opath), opath);
-  const JsonReader root(odoc, opath);
-  const Json& items = root.Required("objects");
-  if (!items.is_array()) root.Fail(items, "objects", "expected an array");
-  for (std::size_t i = 0; i < items.items().size(); ++i) {
-    const JsonReader r(items.items()[i], opath, "objects[" + std::to_string(i) + "]");
-    DetectedObject o;
-    o.id = r.String("id");
-    o.centroid_m = Vec3(r, "centroid");
-    o.max_height = r.Number("max_height");
-    if (r.Has("normal")) o.normal_m = Vec3(r, "normal");      // what registration uses
-    if (r.Has("area")) o.area = r.Number("area");             // the footprint, where "vertices" is absent
-    if (const auto vs = r.OptionalNumbers("vertices", -1)) {  // the footprint's vertices in model.ply
-      for (const double v : *vs) {
-        if (!(v >= 0 && v < static_cast<double>(out.model.num_vertices()) && v == std::floor(v))) {
-          r.Fail(r.Required("vertices"), "vertices",
-                 "holds " + FormatDouble(v) + ", not a vertex index of model.ply (" +
-                     std::to_string(out.model.num_vertices()) + " vertices)");
-        }
-        o.vertices.push_back(static_cast<int>(v));
-      }
-    }
-    out.objects.push_back(std::move(o));
-  }
-  const std::string jpath = (d / "mapping.json").string();
-  if (fs::exists(jpath)) {
-    const Json jdoc = Json::Parse(ReadFileToString(jpath), jpath);
-    const JsonReader j(jdoc, jpath);
-    if (const auto in = j.OptionalObject("inputs")) out.mesh_path = in->OptionalString("mesh").value_or("");
-  }
-  return out;
-}
-
-std::optional<std::string> FindMappingResults(const std::string& results) {
-  if (fs::exists(fs::path(results) / "model.ply")) return results;
-  if (fs::exists(fs::path(results) / "mapping" / "model.ply")) return (fs::path(results) / "mapping").string();
-  return std::nullopt;
-}
-
-SurveyComparisonRun RunSurveyComparison(const std::string& results_a, const std::string& results_b,
-                                        const std::string& mesh, double mesh_scale, const SurveyCompareOptions& o,
-                                        Progress& progress) {
-  o.Check();
-  SurveyComparisonRun run;
-  auto folder = [](const std::string& results) {
-    const auto f = FindMappingResults(results);
-    if (!f) {
-      throw InputError({results, 0, 0, ""}, "holds neither mapping results (model.ply) nor a pipeline's mapping/");
-    }
-    return *f;
-  };
-  run.folder_a = folder(results_a);
-  run.folder_b = folder(results_b);
-  progress.Update(0.0, "reading survey A's results");
-  MappingResultsOnDisk a = ReadMappingResultsForCompare(run.folder_a);
-  progress.ThrowIfCancelled();
-  progress.Update(0.1, "reading survey B's results");
-  MappingResultsOnDisk b = ReadMappingResultsForCompare(run.folder_b);
-  progress.ThrowIfCancelled();
-  run.mesh = mesh.empty() ? a.mesh_path : mesh;
-  if (run.mesh.empty()) {
-    throw InputError({(fs::path(run.folder_a) / "mapping.json").string(), 0, 0, "inputs.mesh"},
-                     "names no CAD mesh: give the mesh");
-  }
-  progress.Update(0.2, "loading the CAD mesh");
-  MeshLoadOptions lo;
-  lo.scale = mesh_scale;
-  const TriangleMesh cad = LoadMesh(run.mesh, lo);
-  progress.ThrowIfCancelled();
-  SubProgress sub(progress, 0.3, 1.0);
-  run.comparison = CompareSurveys(cad, a.model, a.objects, b.model, b.objects, o, sub);
-  run.objects_a = std::move(a.objects);
-  run.objects_b = std::move(b.objects);
-  return run;
-}
-
-void WriteSurveyComparison(const SurveyComparison& c, const std::string& final_dir) {
-  WriteDirectoryAtomic(final_dir, [&](const std::string& dir) {
-    MeshSaveOptions ply;
-    ply.binary = true;
-    SaveMesh(c.model, (fs::path(dir) / "model.ply").string(), ply);
-    CsvWriter csv(
-        {"change", "id_a", "id_b", "x", "y", "z", "height_a", "height_b", "height_change", "from_height_field"});
-    Json list = Json::Array();
-    for (const ObjectChange& o : c.objects) {
-      csv.Add(ObjectChangeKindName(o.kind)).Add(o.id_a).Add(o.id_b);
-      for (int k = 0; k < 3; ++k) csv.Add(o.centroid[k]);
-      csv.Add(o.height_a).Add(o.height_b).Add(o.change);
-      csv.Add(o.from_height_field ? 1 : 0);
-      csv.EndRow();
-      Json j = Json::Object();
-      j.Set("change", ObjectChangeKindName(o.kind));
-      j.Set("id_a", o.id_a);
-      j.Set("id_b", o.id_b);
-      j.Set("centroid", Json::ArrayOf(std::vector<double>{o.centroid.x(), o.centroid.y(), o.centroid.z()}));
-      j.Set("height_a", o.height_a);
-      j.Set("height_b", o.height_b);
-      j.Set("height_change", o.change);
-      j.Set("from_height_field", o.from_height_field);
-      list.Push(std::move(j));
-    }
-    WriteFileAtomic((fs::path(dir) / "objects.csv").string(), csv.text());
-    Json root = Json::Object();
-    root.Set("format", "hull-compare");
-    root.Set("version", 2);
-    root.Set("vertices", static_cast<std::int64_t>(c.model.num_vertices()));
-    root.Set("significant_vertices", static_cast<std::int64_t>(c.significant_vertices));
-    const SurveyRegistration& r = c.registration;
-    Json reg = Json::Object();
-    reg.Set("registered", r.registered);
-    reg.Set("peaks_in_common", r.inliers);
-    reg.Set("peaks_in_common_unregistered", r.identity_inliers);
-    reg.Set("rms", r.rms);
-    reg.Set("rotation_deg", r.rotation * 180.0 / M_PI);
-    reg.Set("translation", r.translation);
-    const Vector6d x = r.a_from_b.ToVector();
-    reg.Set("a_from_b", Json::ArrayOf(std::vector<double>(x.data(), x.data() + 6)));
-    root.Set("registration", std::move(reg));
-    root.Set("peak_reach", c.reach);
-    root.Set("objects", std::move(list));
-    WriteFileAtomic((fs::path(dir) / "compare.json").string(), root.Dump());
-  });
 }
 
 }  // namespace hull

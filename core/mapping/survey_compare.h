@@ -105,36 +105,4 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
                                 const std::vector<DetectedObject>& objects_b, const SurveyCompareOptions& options,
                                 Progress& progress);
 
-// A mapping results folder as the comparison needs it: model.ply with its
-// scalars and objects.json (id, centroid, max_height). Throws InputError.
-struct MappingResultsOnDisk {
-  TriangleMesh model;
-  std::vector<DetectedObject> objects;
-  std::string mesh_path;  // the CAD mapping.json names ("" if none)
-};
-MappingResultsOnDisk ReadMappingResultsForCompare(const std::string& dir);
-
-// The mapping results folder of `results`: itself when it holds model.ply,
-// else its mapping/ (a pipeline's results folder); nullopt when neither.
-std::optional<std::string> FindMappingResults(const std::string& results);
-
-// The whole comparison of two results folders (mapping or pipeline results):
-// both read, the CAD mesh loaded (`mesh`, or the one A's mapping.json names,
-// scaled by mesh_scale) and compared. Throws InputError naming the file at
-// fault (a folder without mapping results, no mesh named), hull::Cancelled
-// when progress asks.
-struct SurveyComparisonRun {
-  std::string folder_a, folder_b;  // the mapping results folders read
-  std::string mesh;                // the CAD mesh used
-  std::vector<DetectedObject> objects_a, objects_b;
-  SurveyComparison comparison;
-};
-SurveyComparisonRun RunSurveyComparison(const std::string& results_a, const std::string& results_b,
-                                        const std::string& mesh, double mesh_scale, const SurveyCompareOptions& options,
-                                        Progress& progress);
-
-// Writes DIR (replaced as a whole): model.ply (B's model with the change
-// scalars), objects.csv and compare.json.
-void WriteSurveyComparison(const SurveyComparison& c, const std::string& dir);
-
 }  // namespace hull

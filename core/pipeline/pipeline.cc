@@ -3,9 +3,6 @@
 #include <filesystem>
 
 #include "adjust/bundle_adjuster.h"
-#include "base/atomic_directory.h"
-#include "base/file_io.h"
-#include "base/json.h"
 #include "geometry/mesh_io.h"
 #include "mapping/mapper.h"
 #include "mapping/mapping_input.h"
@@ -98,72 +95,6 @@ PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& o, P
   }
   progress.Update(1.0, "pipeline done");
   return r;
-}
-
-namespace {
-Json PoseJson(const Pose& p) {
-  const Vector6d v = p.ToVector();
-  Json a = Json::Array();
-  for (int i = 0; i < 6; ++i) a.Push(Json(v[i]));
-  return a;
-}
-}  // namespace
-
-void WritePipelineResult(const PipelineInputs& in, const PipelineResult& r, const std::string& final_dir) {
-  WriteDirectoryAtomic(final_dir, [&](const std::string& dir) {
-    if (in.front_end) {
-      WriteFrontEndResult(*in.front_end, in.bundle.manifest, (fs::path(dir) / "features" / "features.csv").string());
-    }
-    {
-      Json j = Json::Object();
-      j.Set("format", "hull-alignment");
-      j.Set("version", 1);
-      j.Set("x_gM", PoseJson(r.alignment.x_gM));
-      j.Set("initial_x_gM", PoseJson(r.alignment.initial_x_gM));
-      j.Set("gicp_converged", r.alignment.gicp.converged);
-      j.Set("gicp_fitness", r.alignment.gicp.fitness);
-      j.Set("constrained_directions", r.alignment.constrained_directions);
-      j.Set("dvl_points", static_cast<std::int64_t>(r.alignment.dvl_points));
-      j.Set("residual_rms_before", r.alignment.residual_rms_before);
-      j.Set("residual_rms_after", r.alignment.residual_rms_after);
-      WriteFileAtomic((fs::path(dir) / "alignment.json").string(), j.Dump());
-    }
-    WriteAdjustmentResult(r.adjustment, (fs::path(dir) / "adjustment").string());
-    for (const auto& b : r.baselines) {
-      WriteAdjustmentResult(
-          b, (fs::path(dir) / ("adjustment-" + std::string(SurfaceModelName(b.options.model)))).string());
-    }
-    if (r.mapping) WriteMappingResult(*r.mapping, (fs::path(dir) / "mapping").string());
-    std::string eval;
-    if (r.image_tracks) eval += r.image_tracks->ToString() + "\n";
-    if (r.evaluation) {
-      eval += std::string(SurfaceModelName(r.adjustment.options.model)) + ":\n" + r.evaluation->ToString();
-    }
-    for (std::size_t i = 0; i < r.baseline_evaluations.size(); ++i) {
-      eval +=
-          std::string(SurfaceModelName(r.baselines[i].options.model)) + ":\n" + r.baseline_evaluations[i].ToString();
-    }
-    if (!eval.empty()) WriteFileAtomic((fs::path(dir) / "evaluation.txt").string(), eval);
-    Json s = Json::Object();
-    s.Set("format", "hull-pipeline");
-    s.Set("version", 1);
-    s.Set("bundle", in.bundle_path);
-    s.Set("mesh", in.mesh_path);
-    s.Set("mesh_scale", in.mesh_scale);
-    s.Set("model", SurfaceModelName(r.adjustment.options.model));
-    s.Set("keyframes", static_cast<std::int64_t>(in.bundle.nav.size()));
-    s.Set("landmarks", static_cast<std::int64_t>(r.adjustment.landmarks.size()));
-    s.Set("fraction_on_surface", r.adjustment.FractionOnSurface());
-    s.Set("adjustment_seconds", r.adjustment.seconds);
-    s.Set("converged", r.adjustment.converged);
-    if (r.mapping) {
-      s.Set("objects", static_cast<std::int64_t>(r.mapping->objects.size()));
-      s.Set("remeshed_model", (fs::path(final_dir) / "mapping" / "model.ply").string());
-      s.Set("inspected_area", r.mapping->summary.inspected_area);
-      s.Set("covered_area", r.mapping->summary.covered_area);
-    }
-    WriteFileAtomic((fs::path(dir) / "summary.json").string(), s.Dump());
-  });
 }
 
 }  // namespace hull

@@ -1,7 +1,7 @@
 // The end-to-end job: survey bundle + prior mesh -> initial alignment (GICP
 // of the DVL returns) -> model-assisted bundle adjustment -> model-assisted
-// mapping (shapes, remeshed hull, objects, fouling assessment) -> results on disk.
-// Qt-free; the GUI runs the same steps in worker threads, one at a time, and
+// mapping (shapes, remeshed hull, objects, fouling assessment); its results
+// folder is results/pipeline_files.h's. Qt-free; the GUI runs the same steps in worker threads, one at a time, and
 // the CLI's `run` command (the headless main job) runs them in a row.
 #pragma once
 
@@ -79,13 +79,5 @@ MappingResult RunMappingStep(const PipelineInputs& in, const AdjustmentResult& a
                              const MappingOptions& options, Progress& progress);
 // All steps.
 PipelineResult RunPipeline(const PipelineInputs& in, const PipelineOptions& options, Progress& progress);
-
-// Writes DIR/features/ (features.csv and match-graph.csv, when the front end
-// ran), DIR/alignment.json, DIR/adjustment/ (and DIR/adjustment-<model>/
-// for the baselines), DIR/mapping/ (remeshed model PLY/OBJ/STL, objects and
-// zones CSV/JSON), DIR/evaluation.txt with truth, and DIR/summary.json,
-// replacing DIR as a whole (WriteDirectoryAtomic: a failed or killed run
-// leaves the previous results intact).
-void WritePipelineResult(const PipelineInputs& in, const PipelineResult& result, const std::string& dir);
 
 }  // namespace hull

@@ -104,6 +104,7 @@ SonarSmootherRun RunSonarSmoother(const AcousticSequence& seq, const SonarRunRes
     const Vector6d& xt = seq.truth->poses[static_cast<std::size_t>(k)];
     const Pose est = Pose::FromVector(r.poses[static_cast<std::size_t>(k)]), tru = Pose::FromVector(xt);
     run.pose_position_errors.push_back(Pose::DistanceBetween(est, tru));
+    run.pose_rotation_errors.push_back(Pose::AngleBetween(est, tru));
     run.pose_nees.push_back(Nees(PoseVectorDifference(r.poses[static_cast<std::size_t>(k)], xt),
                                  r.pose_covariances[static_cast<std::size_t>(k)]));
     e.mean_position += run.pose_position_errors.back() / T;

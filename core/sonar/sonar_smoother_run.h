@@ -47,6 +47,7 @@ struct SonarSmootherRun {
   SonarSmootherResult result;
   std::vector<double> feature_errors;         // parallel to result.features (NaN without truth for it)
   std::vector<double> pose_position_errors;   // per step, with truth
+  std::vector<double> pose_rotation_errors;   // per step, with truth (rad)
   std::vector<double> pose_nees;              // per step, with truth
   std::optional<SonarSmootherErrors> errors;  // when the sequence has truth
 };

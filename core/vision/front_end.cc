@@ -351,25 +351,6 @@ int FrontEndResult::KeyframeIndex(std::int64_t keyframe) const {
   return -1;
 }
 
-void WriteFrontEndResult(const FrontEndResult& r, const SurveyManifest& manifest, const std::string& features_csv) {
-  const fs::path path(features_csv);
-  if (path.has_parent_path()) fs::create_directories(path.parent_path());
-  WriteFileAtomic(features_csv, FeaturesCsvText(r.features, manifest.camera.stereo()));
-  CsvWriter w({"from", "to", "method", "putative", "inliers", "accepted", "note", "kind", "overlap", "window"});
-  for (const auto& p : r.pairs) {
-    w.Add(p.from).Add(p.to).Add(p.stereo ? "rigid" : "essential").Add(p.putative).Add(p.inliers);
-    w.Add(p.accepted ? "1" : "0").Add(p.note).Add(p.loop ? "loop" : "sequential");
-    if (p.loop) {
-      w.Add(p.overlap);
-    } else {
-      w.Add("");
-    }
-    w.Add(p.window);
-    w.EndRow();
-  }
-  WriteFileAtomic((path.parent_path() / "match-graph.csv").string(), w.text());
-}
-
 bool ExtractFeaturesIfNeeded(SurveyBundle& bundle, const FrontEndOptions& options, Progress& progress,
                              FrontEndResult* result) {
   if (!bundle.features.empty() || !bundle.images || bundle.images->present() == 0) return false;

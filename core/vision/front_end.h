@@ -100,12 +100,6 @@ struct FrontEndResult {
 // file named), OptionError for bad options, hull::Cancelled on cancel.
 FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& options, Progress& progress);
 
-// Writes `features_csv` (the version 1 features.csv) and, beside it,
-// match-graph.csv (from,to,method,putative,inliers,accepted,note,kind,
-// overlap,window; kind is `sequential` or `loop`, overlap the loop's
-// predicted footprint overlap, window the search radius in px).
-void WriteFrontEndResult(const FrontEndResult& result, const SurveyManifest& manifest, const std::string& features_csv);
-
 // Runs the front end when a version 2 bundle has images and no feature
 // observations, and puts its observations into the bundle. Returns whether
 // it ran.

@@ -24,6 +24,7 @@
 #include "geometry/mesh_io.h"
 #include "gui_test_support.h"
 #include "inspection_window.h"
+#include "results/mapping_files.h"
 #include "ui/app/main_window.h"
 #include "ui/controllers/inspection_controller.h"
 #include "ui/controllers/result_exports.h"

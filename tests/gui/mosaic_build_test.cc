@@ -13,6 +13,7 @@
 // a file, a folder below a file, another survey's results, images missing
 // since opening, no results, a survey without images — each a message
 // naming the reason and the path, nothing written, no crash.
+#include <QAbstractButton>
 #include <QAction>
 #include <QApplication>
 #include <QCryptographicHash>
@@ -20,6 +21,7 @@
 #include <QDockWidget>
 #include <QFile>
 #include <QFileDialog>
+#include <QMessageBox>
 #include <QScrollArea>
 #include <QSignalSpy>
 #include <QTimer>
@@ -27,6 +29,7 @@
 #include <QtTest>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "base/file_io.h"
 #include "base/progress.h"
@@ -34,6 +37,7 @@
 #include "inspection_window.h"
 #include "mapping/mapper.h"
 #include "mosaic/mosaic_io.h"
+#include "results/adjustment_files.h"
 #include "simulate/survey_simulator.h"
 #include "synthetic_survey.h"
 #include "ui/controllers/mosaic_controller.h"
@@ -141,18 +145,28 @@ std::map<std::string, QByteArray> Snapshot(const fs::path& dir) {
 
 // Builds through the menu action, answering its folder dialog with
 // `folder` (which must exist, as in the dialog).
-void TriggerBuild(Window& win, const QString& folder) {
-  QVERIFY(QDir(folder).exists());
-  QTimer::singleShot(300, [folder] {
+// Chooses `folder` in the file dialog; a folder of other files is then
+// confirmed in the question that follows (returned: whether it was asked).
+bool TriggerBuild(Window& win, const QString& folder) {
+  if (!QDir(folder).exists()) return false;
+  auto asked = std::make_shared<bool>(false);
+  QTimer::singleShot(300, [folder, asked] {
     auto* dialog = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
     if (!dialog) return;
     // The folder itself as the dialog's directory, nothing selected in it:
     // what accept() returns (selectFile would select it in its parent, once
     // the parent's listing has loaded).
     dialog->setDirectory(folder);
+    QTimer::singleShot(300, [asked] {
+      auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget());
+      if (!box) return;
+      *asked = box->text().contains(QStringLiteral("holds files HullInspect did not write"));
+      box->button(QMessageBox::Yes)->click();
+    });
     static_cast<QDialog*>(dialog)->accept();  // QFileDialog::accept: the selected folder
   });
   win.w.action(QStringLiteral("buildMosaic"))->trigger();
+  return *asked;
 }
 
 // The mosaic layer alone in the 3-D view (docks hidden), seen from the
@@ -210,7 +224,8 @@ class MosaicBuildTest : public QObject {
     QSignalSpy progress(win.w.jobs(), &JobRunner::jobProgress);
     QElapsedTimer timer;
     timer.start();
-    TriggerBuild(win, results);
+    // The folder holds a file of the user's: asked first, then written beside it.
+    QVERIFY(TriggerBuild(win, results));
     QTRY_VERIFY_WITH_TIMEOUT(win.w.jobs()->IsBusy(MosaicController::kMosaicJob), 5000);
     QVERIFY(!build->isEnabled());  // one build at a time
     HI_WAIT_IDLE(win.w.jobs(), 240000);
@@ -348,7 +363,7 @@ class MosaicBuildTest : public QObject {
     QDir(results).removeRecursively();
     QVERIFY(QDir().mkpath(results));
     timer.restart();
-    TriggerBuild(win, results);
+    QVERIFY(!TriggerBuild(win, results));  // an empty folder: nothing to ask
     QTRY_VERIFY_WITH_TIMEOUT(win.w.jobs()->IsBusy(MosaicController::kMosaicJob), 5000);
     HI_WAIT_IDLE(win.w.jobs(), 240000);
     QVERIFY2(win.errors.isEmpty(), qPrintable(win.errors.join('\n')));
@@ -383,9 +398,9 @@ class MosaicBuildTest : public QObject {
       std::ofstream f(Native(file));
       f << "x";
     }
-    auto expect = [&](const QString& folder, const QString& words) {
+    auto expect = [&](const QString& folder, const QString& words, bool force = false) {
       win.errors.clear();
-      builder->Build(folder);
+      builder->Build(folder, force);
       if (!QTest::qWaitFor([&win] { return !win.w.jobs()->IsBusy(); }, 240000)) return QStringLiteral("still busy");
       if (win.errors.size() != 1) return QStringLiteral("%1 errors for %2").arg(win.errors.size()).arg(folder);
       if (!win.errors.first().contains(words)) return win.errors.first();
@@ -401,7 +416,9 @@ class MosaicBuildTest : public QObject {
     AdjustmentResult a;
     a.bundle_path = Native(base + QStringLiteral("/another-bundle"));
     WriteAdjustmentResult(a, Native(other + QStringLiteral("/adjustment")));
-    e = expect(other, QStringLiteral("another survey"));
+    e = expect(other, QStringLiteral("HullInspect did not write"));  // no manifest: not confirmed
+    QVERIFY2(e.isEmpty(), qPrintable(e));
+    e = expect(other, QStringLiteral("another survey"), true);
     QVERIFY2(e.isEmpty(), qPrintable(e));
     QVERIFY(!fs::exists(Native(other + QStringLiteral("/mosaic"))));
     // Images gone since the survey was opened: named, nothing written.

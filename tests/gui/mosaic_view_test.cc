@@ -15,6 +15,7 @@
 #include "geometry/mesh_io.h"
 #include "gui_test_support.h"
 #include "inspection_window.h"
+#include "results/adjustment_files.h"
 #include "ui/controllers/document_controller.h"
 #include "ui/panels/layers_panel.h"
 #include "ui/session/mosaic_layer.h"

@@ -353,4 +353,6 @@ class TrustViewsTest : public QObject {
 };
 
 HI_GUI_TEST_MAIN(TrustViewsTest)
+#include "results/compare_files.h"
+#include "results/mapping_files.h"
 #include "trust_views_test.moc"

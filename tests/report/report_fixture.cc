@@ -5,6 +5,8 @@
 
 #include "mapping/mapper.h"
 #include "pipeline/pipeline.h"
+#include "results/mapping_files.h"
+#include "results/pipeline_files.h"
 #include "simulate/survey_simulator.h"
 
 namespace hull::report::test_data {

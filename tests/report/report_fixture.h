@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "results/pipeline_files.h"
 #include "ui/report/report_inputs.h"
 
 namespace hull::report::test_data {

@@ -17,6 +17,7 @@
 
 #include "mapping/vertex_significance.h"
 #include "report_fixture.h"
+#include "results/compare_files.h"
 #include "ui/report/figures.h"
 #include "ui/report/headless_job.h"
 #include "ui/report/report.h"

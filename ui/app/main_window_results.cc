@@ -4,15 +4,18 @@
 #include <QAction>
 #include <QDir>
 #include <QDockWidget>
+#include <QFile>
 #include <QFileDialog>
 #include <QFileInfo>
 #include <QMenu>
 #include <QMenuBar>
+#include <QMessageBox>
 #include <QStatusBar>
 #include <QTimer>
 #include <algorithm>
 
 #include "plugin/plugin_registry.h"
+#include "results/results_folder.h"
 #include "ui/app/main_window.h"
 #include "ui/controllers/document_controller.h"
 #include "ui/controllers/inspection_controller.h"
@@ -392,7 +395,20 @@ void MainWindow::AskBuildMosaic() {
   if (start.isEmpty() && session_->survey()) start = QFileInfo(session_->survey()->path).absolutePath();
   const QString folder = QFileDialog::getExistingDirectory(
       this, QStringLiteral("Build the photomosaic into a results folder (its mosaic/ folder)"), start);
-  if (!folder.isEmpty()) mosaic_->Build(folder);
+  if (folder.isEmpty()) return;
+  // A folder of other files: the results go in beside them only when the
+  // user says so (hullinspect-cli's --force); nothing of theirs is replaced.
+  bool force = false;
+  if (ClassifyOutputFolder(QFile::encodeName(folder).toStdString()) == OutputFolderState::kForeign) {
+    const auto answer = QMessageBox::question(
+        this, QStringLiteral("Write into a folder of other files?"),
+        QStringLiteral("%1 holds files HullInspect did not write. Write the results and the photomosaic into it "
+                       "anyway? Your files are kept and none of them is replaced.")
+            .arg(QDir::toNativeSeparators(folder)));
+    if (answer != QMessageBox::Yes) return;
+    force = true;
+  }
+  mosaic_->Build(folder, force);
 }
 
 std::optional<ReportSource> MainWindow::CollectReport() const {

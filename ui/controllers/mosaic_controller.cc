@@ -1,6 +1,5 @@
 #include "ui/controllers/mosaic_controller.h"
 
-#include <unistd.h>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -11,12 +10,11 @@
 #include <utility>
 #include <vector>
 
-#include "base/atomic_directory.h"
 #include "base/error.h"
-#include "base/file_io.h"
-#include "base/json.h"
 #include "mosaic/mosaic_io.h"
 #include "pipeline/pipeline.h"
+#include "results/mosaic_files.h"
+#include "results/pipeline_files.h"
 #include "simulate/true_scene.h"
 #include "ui/session/mosaic_layer.h"
 
@@ -32,6 +30,7 @@ namespace fs = std::filesystem;
 struct MosaicJobInput {
   std::shared_ptr<const SurveyBundle> bundle;
   std::string bundle_path, mesh_path, out;
+  bool force = false;  // into a folder of other files (the user confirmed)
   std::shared_ptr<const FrontEndResult> front_end;
   std::shared_ptr<const ModelAlignment> alignment;
   std::shared_ptr<const AdjustmentRun> adjustment;
@@ -48,51 +47,6 @@ struct MosaicJobResult {
 };
 
 std::string Native(const QString& path) { return QFile::encodeName(path).toStdString(); }
-
-bool SamePath(const std::string& a, const std::string& b) {
-  std::error_code ea, eb;
-  const fs::path ca = fs::weakly_canonical(fs::absolute(a), ea);
-  const fs::path cb = fs::weakly_canonical(fs::absolute(b), eb);
-  if (ea || eb) return fs::absolute(a).lexically_normal() == fs::absolute(b).lexically_normal();
-  return ca == cb;
-}
-
-// Before the long build: `out` must be a folder (or not exist yet) that can
-// be replaced, and hold no results of another survey bundle.
-void CheckResultsFolder(const fs::path& out, const std::string& bundle_path) {
-  std::error_code ec;
-  const std::string name = out.string();
-  if (fs::exists(out, ec) && !fs::is_directory(out, ec)) {
-    throw InputError({name, 0, 0, ""}, "is a file, not a folder: choose a results folder");
-  }
-  fs::create_directories(out.parent_path(), ec);
-  if (ec) {
-    throw InputError({out.parent_path().string(), 0, 0, ""}, "cannot be created (" + ec.message() + ")");
-  }
-  // The atomic write puts a sibling folder beside `out` and swaps it in.
-  const std::string pid = std::to_string(static_cast<long>(::getpid()));
-  for (const fs::path& where : {out.parent_path(), out}) {
-    if (!fs::is_directory(where, ec)) continue;
-    const fs::path probe = where / (".hullinspect-probe-" + pid);
-    fs::create_directory(probe, ec);
-    if (ec) {
-      throw InputError({where.string(), 0, 0, ""},
-                       "cannot be written (" + ec.message() + "): choose a folder you may write to");
-    }
-    fs::remove(probe, ec);
-  }
-  for (const fs::path& json : {out / "adjustment" / "adjustment.json", out / "adjustment.json"}) {
-    if (!fs::is_regular_file(json, ec)) continue;
-    const Json doc = Json::Parse(ReadFileToString(json.string()), json.string());
-    const Json* inputs = doc.Get("inputs");
-    const Json* bundle = inputs ? inputs->Get("bundle") : nullptr;
-    if (bundle && bundle->is_string() && !bundle->as_string().empty() && !SamePath(bundle->as_string(), bundle_path)) {
-      throw InputError({json.string(), 0, 0, "inputs.bundle"},
-                       "the folder holds the results of another survey (" + bundle->as_string() + "), not of " +
-                           bundle_path + ": choose an empty folder or this survey's results folder");
-    }
-  }
-}
 
 // Every image the bundle lists must still be on disk (a dropped frame is
 // not listed); names the first missing one.
@@ -122,7 +76,9 @@ MosaicJobResult RunMosaicJob(const MosaicJobInput& in, Progress& progress) {
     return p.filename().empty() ? p.parent_path() : p;
   }();
   progress.Update(0.0, "checking the results folder " + out.string());
-  CheckResultsFolder(out, in.bundle_path);
+  // A new or empty folder, or a results folder of this survey.
+  CheckResultsFolder(OutputFolder{out.string(), in.force});
+  CheckResultsFolderOfSurvey(out.string(), in.bundle_path);
   CheckImagesPresent(*in.bundle);
   std::unique_ptr<TrueScene> truth;
   std::error_code ec;
@@ -161,14 +117,11 @@ MosaicJobResult RunMosaicJob(const MosaicJobInput& in, Progress& progress) {
   // Cancel acts up to here; the write below is short and not interrupted.
   progress.ThrowIfCancelled();
   // One swap for the whole folder: the results and their mosaic together.
-  WriteDirectoryAtomic(out.string(), [&](const std::string& tmp) {
-    WritePipelineResult(pin, pr, tmp);
-    // summary.json names the remeshed model in the folder it was written
-    // to (here the hidden sibling): where it will lie instead.
-    const std::string summary_path = (fs::path(tmp) / "summary.json").string();
-    Json summary = Json::Parse(ReadFileToString(summary_path), summary_path);
-    if (summary.Get("remeshed_model")) summary.Set("remeshed_model", (out / "mapping" / "model.ply").string());
-    WriteFileAtomic(summary_path, summary.Dump());
+  ResultsRun run = NewResultsRun("hullinspect: Build photomosaic");
+  run.AddSurvey("bundle", in.bundle_path);
+  run.AddFile("mesh", in.mesh_path);
+  WriteResultsFolder(OutputFolder{out.string(), in.force}, run, [&](const std::string& tmp) {
+    WritePipelineResult(pin, pr, tmp, out.string());
     WriteMosaic(r, (fs::path(tmp) / "mosaic").string());
   });
 
@@ -228,7 +181,7 @@ bool MosaicController::busy() const { return jobs_->IsBusy(kMosaicJob); }
 
 void MosaicController::Cancel() { jobs_->Cancel(kMosaicJob); }
 
-void MosaicController::Build(const QString& results) {
+void MosaicController::Build(const QString& results, bool force) {
   const QString why = Unavailable();
   if (!why.isEmpty()) {
     emit failed(QStringLiteral("Cannot build the photomosaic"), why);
@@ -244,6 +197,7 @@ void MosaicController::Build(const QString& results) {
   in.bundle_path = Native(session_->survey()->path);
   in.mesh_path = Native(session_->mesh()->path);
   in.out = Native(last_folder_);
+  in.force = force;
   in.front_end = session_->frontEnd();
   in.alignment = session_->alignment();
   in.adjustment = session_->adjustment();

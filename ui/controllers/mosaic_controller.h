@@ -7,15 +7,16 @@
 // The application holds its results in memory; the mosaic goes to disk in a
 // results folder the user chooses, laid out as 'hullinspect-cli run' and
 // 'hullinspect-cli mosaic' write it: the session's results (alignment.json,
-// adjustment/, mapping/, summary.json, ... : WritePipelineResult) and the
-// mosaic in RESULTS/mosaic/ (mosaic.obj, .mtl, _atlas.png, .ply, .json,
-// _faces.csv: WriteMosaic), so that 'hullinspect --report RESULTS',
+// adjustment/, mapping/, summary.json, ... : results/pipeline_files.h) and
+// the mosaic in RESULTS/mosaic/ (mosaic.obj, .mtl, _atlas.png, .ply, .json,
+// _faces.csv: results/mosaic_files.h), so that 'hullinspect-cli report',
 // 'hullinspect-cli export' and File > Open photomosaic read it. The folder
-// is replaced in one atomic swap after the mosaic is built
-// (WriteDirectoryAtomic; the user's own files in it are kept): a cancelled
-// or failed build leaves it as it was, a previous mosaic included (Cancel
-// acts until that write starts, the last few per cent). A folder
-// holding the results of another survey bundle is refused. On success the
+// is replaced in one atomic swap after the mosaic is built, with its
+// manifest (results/results_folder.h; the user's own files in it are
+// kept): a cancelled or failed build leaves it as it was, a previous mosaic
+// included (Cancel acts until that write starts, the last few per cent). A
+// folder holding files HullInspect did not write, or the results of another
+// survey bundle, is refused before the build. On success the
 // mosaic goes into the Session: the 3-D view's textured layer, and the
 // report hook's Photomosaic (models/report_source.h).
 #pragma once
@@ -41,9 +42,11 @@ class MosaicController : public QObject {
   QString Unavailable() const;
   bool CanBuild() const { return Unavailable().isEmpty(); }
   // Builds the mosaic into `results` (created when it does not exist).
+  // A folder holding files HullInspect did not write is refused unless
+  // `force` (the user confirmed: their files are kept, none replaced).
   // Refusals (Unavailable) go through failed(); errors of the job through
   // the JobRunner's jobFailed.
-  void Build(const QString& results);
+  void Build(const QString& results, bool force = false);
   void Cancel();
   bool busy() const;
   // The results folder of the last build asked for ("" : none yet).

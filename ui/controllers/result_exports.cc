@@ -4,8 +4,8 @@
 #include <QFile>
 #include <QFileInfo>
 
-#include "base/file_io.h"
 #include "pipeline/model_export.h"
+#include "results/mapping_files.h"
 
 namespace hull::ui {
 
@@ -41,12 +41,12 @@ void ResultExporter::ExportModel(const QString& path) {
 
 void ResultExporter::ExportObjects(const QString& path) {
   Export(path, QStringLiteral("the detected objects"),
-         [](const MappingResult& r, const std::string& target) { WriteFileAtomic(target, ObjectsCsv(r)); });
+         [](const MappingResult& r, const std::string& target) { WriteObjectsCsv(r, target); });
 }
 
 void ResultExporter::ExportZones(const QString& path) {
   Export(path, QStringLiteral("the zones"),
-         [](const MappingResult& r, const std::string& target) { WriteFileAtomic(target, ZonesCsv(r)); });
+         [](const MappingResult& r, const std::string& target) { WriteZonesCsv(r, target); });
 }
 
 }  // namespace hull::ui

@@ -10,7 +10,7 @@
 #include <array>
 #include <memory>
 
-#include "mapping/survey_compare.h"
+#include "results/compare_files.h"
 
 namespace hull::ui {
 

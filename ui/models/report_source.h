@@ -14,6 +14,7 @@
 
 #include "mapping/mapping_result.h"
 #include "pipeline/pipeline.h"
+#include "results/compare_files.h"
 #include "ui/session/parameters.h"
 #include "ui/session/session.h"
 

@@ -8,7 +8,7 @@
 #include <QWidget>
 #include <memory>
 
-#include "mapping/survey_compare.h"
+#include "results/compare_files.h"
 
 class QLabel;
 class QPushButton;

@@ -12,10 +12,9 @@
 #include <vector>
 
 #include "base/progress.h"
-#include "mapping/mapper.h"
-#include "mapping/survey_compare.h"
 #include "pipeline/pipeline.h"
-#include "simulate/survey_simulator.h"
+#include "results/compare_files.h"
+#include "results/pipeline_job.h"
 #include "ui/report/report.h"
 #include "ui/report/results_reader.h"
 
@@ -45,83 +44,61 @@ class StderrProgress final : public Progress {
 
 void Say(const char* format, const std::string& what) { std::fprintf(stderr, format, what.c_str()); }
 
-struct Step {
-  std::string name;
-  double seconds = 0;
-};
-
 std::string Native(const QString& path) { return QDir::toNativeSeparators(path).toStdString(); }
 
+ReportInputs DemoReportInputs(const PipelineRun& job, double seconds) {
+  ReportInputs report;
+  if (job.result.mapping) report.mapping = std::make_shared<const MappingResult>(*job.result.mapping);
+  report.bundle_path = job.inputs.bundle_path;
+  report.mesh_path = job.inputs.mesh_path;
+  report.results_path = job.folder;
+  report.bundle = std::make_shared<const SurveyBundle>(job.inputs.bundle);
+  report.cad = std::make_shared<const TriangleMesh>(job.inputs.mesh);
+  report.pipeline = std::make_shared<const PipelineResult>(job.result);
+  report.run_seconds = seconds;
+  return report;
+}
+
+// The demo survey simulated, run through the pipeline (alignment, the three
+// models, mapping: once) and written with its report as one results folder.
 int RunDemo(const HeadlessCommand& c) {
   QElapsedTimer total;
   total.start();
-  std::vector<Step> steps;
-  const auto timed = [&](const char* name, auto&& work) {
-    QElapsedTimer t;
-    t.start();
-    work();
-    steps.push_back({name, t.elapsed() / 1000.0});
-    std::fprintf(stderr, "hullinspect: %s done in %.1f s\n", name, steps.back().seconds);
-  };
-  if (!QDir().mkpath(c.out)) throw std::runtime_error("cannot create the folder " + Native(c.out));
-  const QDir out(QFileInfo(c.out).absoluteFilePath());
-  const std::string out_dir = out.absolutePath().toStdString();
-  const std::string bundle_dir = (std::filesystem::path(out_dir) / "demo-survey").string();
-
-  timed("simulation", [&] {
-    StderrProgress p("simulating the demo survey");
-    WriteSimulatedSurvey(SimulateSurvey(SurveyPreset("demo"), p), bundle_dir);
-  });
-  PipelineInputs in;
-  auto result = std::make_shared<PipelineResult>();
-  timed("pipeline", [&] {
-    in = LoadPipelineInputs(bundle_dir);
-    PipelineOptions options;
-    options.compare_models = true;  // the report shows the three models side by side
-    StderrProgress p("pipeline");
-    *result = RunPipeline(in, options, p);
-    WritePipelineResult(in, *result, out_dir);
-  });
-
-  auto mapping = std::make_shared<MappingResult>();
-  const std::string mapping_dir = (std::filesystem::path(out_dir) / "mapping").string();
-  timed("mapping", [&] {
-    StderrProgress p("mapping");
-    *mapping = RunMapping(MappingInputFromAdjustment(result->adjustment, in.bundle), in.mesh, MappingOptions{}, p);
-    mapping->inputs = {{"adjustment", (std::filesystem::path(out_dir) / "adjustment").string()},
-                       {"bundle", in.bundle_path},
-                       {"mesh", in.mesh_path}};
-    WriteMappingResult(*mapping, mapping_dir);
-  });
-
-  ReportInputs report;
-  report.mapping = mapping;
-  report.bundle_path = in.bundle_path;
-  report.mesh_path = in.mesh_path;
-  report.results_path = out_dir;
-  report.bundle = std::make_shared<const SurveyBundle>(std::move(in.bundle));
-  report.cad = std::make_shared<const TriangleMesh>(std::move(in.mesh));
-  report.pipeline = result;
-  report.run_seconds = total.elapsed() / 1000.0;
-
+  PipelineSource source;
+  source.demo = true;
+  PipelineOptions options;
+  options.compare_models = true;  // the report shows the three models side by side
+  // As before the results folder: its parent folders are made when missing.
+  const QString parent = QFileInfo(QFileInfo(c.out).absoluteFilePath()).absolutePath();
+  if (!QDir().mkpath(parent)) throw std::runtime_error("cannot create the folder " + Native(parent));
+  StderrProgress progress("demo: simulation, pipeline and mapping");
   ReportFiles files;
-  timed("report", [&] {
-    Say("hullinspect: %s\n", "writing the report");
-    files = WriteReport(report, out.filePath(QStringLiteral("report.html")), out.filePath(QStringLiteral("report.pdf")),
-                        {}, out.filePath(QStringLiteral("figures")));
-  });
-
-  std::printf("report:   %s\n          %s (%d pages)\n", Native(files.html).c_str(), Native(files.pdf).c_str(),
-              files.pdf_pages);
+  double report_seconds = 0;
+  const PipelineRun job = RunPipelineJob(
+      source, options, OutputFolder{Native(c.out), false}, "hullinspect --demo", progress,
+      [&](const std::string& tmp, const PipelineRun& run) {
+        std::fprintf(stderr, "hullinspect: pipeline and mapping done in %.1f s\n", total.elapsed() / 1000.0);
+        Say("hullinspect: %s\n", "writing the report");
+        QElapsedTimer t;
+        t.start();
+        const QDir dir(QString::fromStdString(tmp));
+        files =
+            WriteReport(DemoReportInputs(run, total.elapsed() / 1000.0), dir.filePath(QStringLiteral("report.html")),
+                        dir.filePath(QStringLiteral("report.pdf")), {}, dir.filePath(QStringLiteral("figures")));
+        report_seconds = t.elapsed() / 1000.0;
+      });
+  const QDir out(QString::fromStdString(job.folder));
+  const std::string mapping_dir = (std::filesystem::path(job.folder) / "mapping").string();
+  std::printf("report:   %s\n          %s (%d pages)\n", Native(out.filePath(QStringLiteral("report.html"))).c_str(),
+              Native(out.filePath(QStringLiteral("report.pdf"))).c_str(), files.pdf_pages);
   std::printf("figures:  %s\n", Native(out.filePath(QStringLiteral("figures"))).c_str());
   std::printf("model:    %s/model.ply (per-vertex deviation), model.obj, model.stl\n", mapping_dir.c_str());
-  std::printf("objects:  %s/objects.csv, objects.json (%zu objects)\n", mapping_dir.c_str(), mapping->objects.size());
+  std::printf("objects:  %s/objects.csv, objects.json (%zu objects)\n", mapping_dir.c_str(),
+              job.result.mapping ? job.result.mapping->objects.size() : 0);
   std::printf("zones:    %s/zones.csv, zones.json\n", mapping_dir.c_str());
-  std::printf("results:  %s (alignment.json, adjustment*/, evaluation.txt, summary.json)\n", out_dir.c_str());
-  std::printf("survey:   %s\n", bundle_dir.c_str());
-  std::printf("time:     ");
-  for (const Step& s : steps) std::printf("%s %.1f s, ", s.name.c_str(), s.seconds);
-  std::printf("total %.1f s\n", total.elapsed() / 1000.0);
+  std::printf("results:  %s (alignment.json, adjustment*/, evaluation.txt, summary.json)\n", job.folder.c_str());
+  std::printf("survey:   %s\n", job.inputs.bundle_path.c_str());
+  std::printf("time:     report %.1f s, total %.1f s\n", report_seconds, total.elapsed() / 1000.0);
   return kExitOk;
 }
 

@@ -12,8 +12,8 @@
 
 #include "geometry/triangle_mesh.h"
 #include "mapping/mapping_result.h"
-#include "mapping/survey_compare.h"
 #include "pipeline/pipeline.h"
+#include "results/compare_files.h"
 #include "survey/survey.h"
 
 namespace hull::report {

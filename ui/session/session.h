@@ -15,8 +15,8 @@
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
-#include "mapping/survey_compare.h"
 #include "registration/model_alignment.h"
+#include "results/compare_files.h"
 #include "survey/survey.h"
 #include "ui/session/inspection_results.h"
 #include "ui/session/mosaic_layer.h"

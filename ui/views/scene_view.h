@@ -18,7 +18,7 @@
 
 #include "geometry/pose.h"
 #include "geometry/triangle_mesh.h"
-#include "mapping/survey_compare.h"
+#include "results/compare_files.h"
 #include "survey/survey.h"
 #include "ui/models/cross_section.h"
 #include "ui/models/pick_details.h"

@@ -41,6 +41,7 @@
 #include "mapping/object_height_check.h"
 #include "mapping/survey_compare.h"
 #include "pipeline/pipeline.h"
+#include "results/adjustment_files.h"
 #include "simulate/survey_simulator.h"
 
 namespace {

@@ -27,6 +27,8 @@
 #include "geometry/mesh_io.h"
 #include "image/image_file.h"
 #include "mosaic/mosaic_io.h"
+#include "results/adjustment_files.h"
+#include "results/mosaic_files.h"
 #include "support/bench_clock.h"
 #include "survey/survey_import.h"
 

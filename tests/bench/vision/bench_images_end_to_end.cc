@@ -59,6 +59,8 @@
 #include "mapping/mapping_input.h"
 #include "mapping/object_height_check.h"
 #include "pipeline/pipeline.h"
+#include "results/adjustment_files.h"
+#include "results/front_end_files.h"
 #include "simulate/image_track_truth.h"
 #include "simulate/survey_simulator.h"
 #include "simulate/true_scene.h"

@@ -27,6 +27,7 @@
 #include "adjust/triangulation.h"
 #include "geometry/mesh_index.h"
 #include "pipeline/pipeline.h"
+#include "results/adjustment_files.h"
 #include "simulate/image_track_truth.h"
 
 namespace {

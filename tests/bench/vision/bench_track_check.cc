@@ -19,6 +19,7 @@
 
 #include "base/progress.h"
 #include "geometry/mesh_index.h"
+#include "results/front_end_files.h"
 #include "simulate/image_track_truth.h"
 #include "simulate/true_scene.h"
 #include "survey/survey_io.h"

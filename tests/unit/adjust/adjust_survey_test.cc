@@ -11,6 +11,7 @@
 
 #include "adjust/bundle_adjuster.h"
 #include "adjust/evaluation.h"
+#include "results/adjustment_files.h"
 #include "simulate/survey_simulator.h"
 
 namespace hull {

@@ -17,6 +17,7 @@
 #include "adjust/adjust_result.h"
 #include "adjust/bundle_adjuster.h"
 #include "base/progress.h"
+#include "results/adjustment_files.h"
 #include "simulate/survey_simulator.h"
 #include "support/test_surveys.h"
 

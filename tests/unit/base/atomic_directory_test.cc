@@ -1,6 +1,7 @@
-// A results folder is replaced as a whole: a writer that fails, or a child
-// process killed in the middle of writing, leaves the previous folder
-// intact and complete; a writer that finishes replaces it entirely.
+// A folder is replaced as a whole: a writer that fails, or a child process
+// killed in the middle of writing, leaves the previous folder intact and
+// complete; a writer that finishes replaces it entirely. (Results folders,
+// their manifest and the user's files in them: tests/unit/results.)
 #include "base/atomic_directory.h"
 
 #include <gtest/gtest.h>
@@ -32,8 +33,7 @@ fs::path Fresh(const std::string& name) {
 std::vector<std::pair<std::string, std::string>> Contents(const fs::path& dir) {
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    if (e.is_regular_file() && e.path().filename() != ".hullinspect-results")
-      out.emplace_back(fs::relative(e.path(), dir).string(), ReadFileToString(e.path()));
+    if (e.is_regular_file()) out.emplace_back(fs::relative(e.path(), dir).string(), ReadFileToString(e.path()));
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -57,24 +57,6 @@ TEST(AtomicDirectory, ReplacesTheWholeFolder) {
   int siblings = 0;
   for (const auto& e : fs::directory_iterator(root)) siblings += e.path().filename() != "results";
   EXPECT_EQ(siblings, 0);
-}
-
-TEST(AtomicDirectory, TheUsersOwnFilesInTheFolderAreKept) {
-  // A survey and a note the user saved in the results folder are not results
-  // of a run: a new run keeps them, and drops only the old run's files.
-  const fs::path root = Fresh("hi_atomic_user_files");
-  const fs::path dir = root / "results";
-  fs::create_directories(dir / "survey");
-  WriteFileAtomic((dir / "survey" / "nav.csv").string(), "user survey");
-  WriteFileAtomic((dir / "notes.txt").string(), "user note");
-  WriteDirectoryAtomic(dir.string(), [](const std::string& tmp) { WriteRun(tmp, "run 1", 3); });
-  WriteDirectoryAtomic(dir.string(), [](const std::string& tmp) { WriteRun(tmp, "run 2", 2); });
-  const auto c = Contents(dir);
-  ASSERT_EQ(c.size(), 4u);
-  EXPECT_EQ(c[0], std::make_pair(std::string("file0.txt"), std::string("run 2")));
-  EXPECT_EQ(c[1], std::make_pair(std::string("file1.txt"), std::string("run 2")));
-  EXPECT_EQ(c[2], std::make_pair(std::string("notes.txt"), std::string("user note")));
-  EXPECT_EQ(c[3], std::make_pair(std::string("survey/nav.csv"), std::string("user survey")));
 }
 
 TEST(AtomicDirectory, AFailedRunLeavesThePreviousResults) {
@@ -130,6 +112,23 @@ TEST(AtomicDirectory, AKilledRunLeavesThePreviousResults) {
   for (const auto& e : fs::directory_iterator(root)) stale += e.path().filename().string().rfind(".results.", 0) == 0;
   EXPECT_EQ(stale, 0);
   ASSERT_EQ(Contents(dir).size(), 1u);
+}
+
+TEST(AtomicDirectory, AFolderLeftAsideByAKilledSwapIsPutBack) {
+  // Where the file system has no RENAME_EXCHANGE the swap is two renames; a
+  // writer killed between them leaves the folder aside as ".NAME.old-PID".
+  // The next write puts it back before anything else, so even a write that
+  // then fails leaves the previous folder whole.
+  const fs::path root = Fresh("hi_atomic_old");
+  const fs::path aside = root / ".results.old-999999999";  // no such process
+  fs::create_directories(aside);
+  WriteFileAtomic((aside / "file0.txt").string(), "previous");
+  const std::string dir = (root / "results").string();
+  EXPECT_THROW(WriteDirectoryAtomic(dir, [](const std::string&) { throw std::runtime_error("disk full"); }),
+               std::runtime_error);
+  ASSERT_EQ(Contents(dir).size(), 1u);
+  EXPECT_EQ(Contents(dir)[0].second, "previous");
+  EXPECT_FALSE(fs::exists(aside));
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "mapping/object_height_check.h"
 #include "mapping/shape_fusion.h"
 #include "mapping/surface_clip.h"
+#include "results/mapping_files.h"
 #include "simulate/survey_simulator.h"
 
 namespace hull {

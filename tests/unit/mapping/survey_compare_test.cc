@@ -2,7 +2,7 @@
 // (CAD) and two fused models over it, survey B's with one lump grown, one
 // removed and one new; per-vertex change and significance against the
 // heights put in, objects classed by position.
-#include "mapping/survey_compare.h"
+#include "results/compare_files.h"
 
 #include <gtest/gtest.h>
 

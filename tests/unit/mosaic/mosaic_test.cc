@@ -30,6 +30,7 @@
 #include "mosaic/mosaic_io.h"
 #include "mosaic/photomosaic.h"
 #include "mosaic/photomosaic_internal.h"
+#include "results/mosaic_files.h"
 #include "simulate/survey_imaging.h"
 #include "support/test_files.h"
 

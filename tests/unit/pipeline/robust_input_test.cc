@@ -19,6 +19,7 @@
 #include "geometry/query_bounds.h"
 #include "pipeline/capped_run.h"
 #include "registration/gicp.h"
+#include "results/adjustment_files.h"
 #include "support/test_files.h"
 #include "support/test_meshes.h"
 #include "support/test_surveys.h"

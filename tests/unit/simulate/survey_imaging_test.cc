@@ -26,6 +26,7 @@
 #include "base/file_io.h"
 #include "geometry/mesh_io.h"
 #include "pipeline/pipeline.h"
+#include "results/front_end_files.h"
 #include "simulate/image_track_truth.h"
 #include "simulate/survey_imaging.h"
 #include "simulate/true_scene.h"

@@ -14,6 +14,7 @@
 #include "geometry/mesh_io.h"
 #include "image/image_file.h"
 #include "pipeline/pipeline.h"
+#include "results/front_end_files.h"
 #include "support/test_files.h"
 #include "support/test_meshes.h"
 #include "survey/survey_images.h"

@@ -14,6 +14,7 @@
 #include <set>
 #include <string>
 
+#include "results/front_end_files.h"
 #include "support/test_files.h"
 #include "survey/survey_io.h"
 #include "unit/vision/vision_scene.h"

@@ -1,12 +1,12 @@
-#include "mapping/mapping_result.h"
+#include "results/mapping_files.h"
 
 #include <cmath>
 #include <filesystem>
 #include <numeric>
 #include <optional>
 
-#include "base/atomic_directory.h"
 #include "base/csv.h"
+#include "base/error.h"
 #include "base/file_io.h"
 #include "base/json.h"
 #include "geometry/mesh_io.h"
@@ -192,7 +192,9 @@ void WriteSummary(const MappingResult& r, const std::string& dir) {
   files.Set("model_obj", "model.obj");
   files.Set("model_stl", "model.stl");
   files.Set("objects", "objects.csv");
+  files.Set("objects_json", "objects.json");
   files.Set("zones", "zones.csv");
+  files.Set("zones_json", "zones.json");
   files.Set("shapes", "shapes.csv");
   root.Set("files", std::move(files));
   WriteFileAtomic(Path(dir, "mapping.json"), root.Dump());
@@ -227,18 +229,34 @@ std::string ZonesCsv(const MappingResult& r) {
   return csv.Take();
 }
 
-void WriteMappingResult(const MappingResult& r, const std::string& final_dir) {
-  WriteDirectoryAtomic(final_dir, [&](const std::string& dir) {
-    MeshSaveOptions ply;
-    ply.binary = true;
-    SaveMesh(r.model, Path(dir, "model.ply"), ply);
-    SaveMesh(r.model, Path(dir, "model.obj"));
-    SaveMesh(r.model, Path(dir, "model.stl"));
-    WriteObjects(r, dir);
-    WriteZones(r, dir);
-    WriteShapes(r, dir);
-    WriteSummary(r, dir);
-  });
+void WriteMappingResult(const MappingResult& r, const std::string& dir) {
+  fs::create_directories(dir);
+  MeshSaveOptions ply;
+  ply.binary = true;
+  SaveMesh(r.model, Path(dir, "model.ply"), ply);
+  SaveMesh(r.model, Path(dir, "model.obj"));
+  SaveMesh(r.model, Path(dir, "model.stl"));
+  WriteObjects(r, dir);
+  WriteZones(r, dir);
+  WriteShapes(r, dir);
+  WriteSummary(r, dir);
 }
+
+void SaveMappingResults(const MappingResult& r, const OutputFolder& out, ResultsRun run) {
+  for (const auto& [role, path] : r.inputs) {
+    if (role == "bundle") {
+      run.AddSurvey(role, path);
+    } else if (role == "mesh") {
+      run.AddFile(role, path);
+    } else if (role == "adjustment") {
+      run.AddResults(role, path);
+    }
+  }
+  WriteResultsFolder(out, run, [&](const std::string& tmp) { WriteMappingResult(r, tmp); });
+}
+
+void WriteObjectsCsv(const MappingResult& r, const std::string& path) { WriteFileAtomic(path, ObjectsCsv(r)); }
+
+void WriteZonesCsv(const MappingResult& r, const std::string& path) { WriteFileAtomic(path, ZonesCsv(r)); }
 
 }  // namespace hull
