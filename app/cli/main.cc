@@ -47,7 +47,8 @@ void PrintUsage() {
       "\nRun 'hullinspect-cli <command> --help' for a command's options.\n"
       "Every command takes --plugin-option <plugin>.<key>=<value> (see 'hullinspect-cli plugins').\n\n"
       "exit codes: 0 success, 1 the work failed, 2 bad command line,\n"
-      "            3 unreadable or malformed input, 130 cancelled\n");
+      "            3 unreadable or malformed input, 4 insufficient data (the inputs\n"
+      "            are well-formed but show too little for a result), 130 cancelled\n");
 }
 
 }  // namespace
@@ -77,6 +78,9 @@ int main(int argc, char** argv) {
     } catch (const hull::InputError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return hull::cli::kExitBadInput;
+    } catch (const hull::InsufficientData& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return hull::cli::kExitInsufficientData;
     } catch (const hull::OptionError& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return hull::cli::kExitUsage;

@@ -84,6 +84,14 @@ OptionError::OptionError(const std::string& field, const std::string& why)
                             PrintableText(why, kMaxPrintedMessage)),
       field_(field) {}
 
+InsufficientData::InsufficientData(std::string stage, const std::string& what, std::string where)
+    : std::runtime_error("insufficient data (" + PrintableText(stage, kMaxPrintedField) +
+                         "): " + PrintableText(what, kMaxPrintedMessage) +
+                         (where.empty() ? std::string() : " [" + PrintableText(where, kMaxPrintedPath) + "]")),
+      stage_(std::move(stage)),
+      where_(std::move(where)),
+      detail_(PrintableText(what, kMaxPrintedMessage)) {}
+
 std::string Problem::ToString() const {
   return where.ToString() + (severity == Severity::kWarning ? ": warning: " : ": ") +
          PrintableText(message, kMaxPrintedMessage);

@@ -43,6 +43,26 @@ class OptionError : public std::invalid_argument {
   std::string field_;
 };
 
+// The inputs are well-formed but hold too little evidence for a result:
+// images that gave no features, stereo pairs that match nowhere, a survey
+// whose cameras measured none of the model, acoustic images with no
+// detections. The run stops instead of reporting a result from nothing (a
+// "clean hull" nobody saw): hullinspect-cli exits with status 4. `stage`
+// names the step that had too little ("front end", "mapping", "sonar
+// images"); `where` the file or folder the evidence came from (may be empty).
+class InsufficientData : public std::runtime_error {
+ public:
+  InsufficientData(std::string stage, const std::string& what, std::string where = "");
+  const std::string& stage() const { return stage_; }
+  const std::string& where() const { return where_; }
+  const std::string& detail() const { return detail_; }
+
+ private:
+  std::string stage_;
+  std::string where_;
+  std::string detail_;
+};
+
 // A job stopped because the user asked it to (thrown only across internal
 // layers; public job functions turn it into a Status).
 class Cancelled : public std::runtime_error {
