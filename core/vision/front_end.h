@@ -12,6 +12,7 @@
 
 #include "base/progress.h"
 #include "survey/survey.h"
+#include "vision/front_end_evidence.h"
 #include "vision/track_check.h"
 #include "vision/track_refinement.h"
 #include "vision/vision_options.h"
@@ -90,6 +91,8 @@ struct FrontEndResult {
   int loop_pairs_tried = 0, loop_pairs_accepted = 0;
   double loop_seconds = 0;
   double seconds = 0;
+  // What the images gave, per camera and in all (front_end_evidence.h).
+  FrontEndEvidence evidence;
 
   // Index into `keyframes` of a keyframe id (-1: none).
   int KeyframeIndex(std::int64_t keyframe) const;
@@ -97,7 +100,10 @@ struct FrontEndResult {
 
 // Runs the front end on every image of a version 2 bundle (bundle.images).
 // Throws InputError when the bundle has no images or an image is bad (the
-// file named), OptionError for bad options, hull::Cancelled on cancel.
+// file named), InsufficientData when the images show too little for an
+// inspection (front_end_evidence.h: a camera whose images give no
+// features, stereo pairs that match nowhere or look swapped, too few
+// tracks), OptionError for bad options, hull::Cancelled on cancel.
 FrontEndResult RunFrontEnd(const SurveyBundle& bundle, const FrontEndOptions& options, Progress& progress);
 
 // Runs the front end when a version 2 bundle has images and no feature
