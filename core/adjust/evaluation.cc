@@ -231,22 +231,43 @@ AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMes
 std::string AdjustmentEvaluation::ToString() const {
   char buf[512];
   std::string s;
+  // Figures over no landmark read as results ("RMSE 0.0000 m"): each is
+  // printed only when it was measured on something.
+  if (landmarks == 0) {
+    s += "landmarks: none of the adjustment's landmarks has a true position: no landmark or label figures\n";
+  } else {
+    std::snprintf(buf, sizeof(buf),
+                  "landmarks %zu: RMSE %.4f m gauge-aligned (%d unobserved DOF; raw %.4f m), hull %.4f, objects %.4f\n",
+                  landmarks, landmark_rmse, unobservable_dof, landmark_rmse_raw, landmark_rmse_hull,
+                  landmark_rmse_objects);
+    s += buf;
+    if (labels_checked > 0) {
+      std::snprintf(buf, sizeof(buf), "labels: %.2f %% agree with truth (%zu checked)\n", 100 * label_agreement,
+                    labels_checked);
+    } else {
+      std::snprintf(buf, sizeof(buf), "labels: none checked (no landmark clearly on or off the hull)\n");
+    }
+    s += buf;
+    std::snprintf(buf, sizeof(buf), "features vs DVL: median deviation of hull features %+.4f m (spread %.4f m)\n",
+                  hull_feature_offset, hull_feature_spread);
+    s += buf;
+  }
   std::snprintf(buf, sizeof(buf),
-                "landmarks %zu: RMSE %.4f m gauge-aligned (%d unobserved DOF; raw %.4f m), hull %.4f, objects %.4f\n"
-                "labels: %.2f %% agree with truth (%zu checked)\n"
-                "features vs DVL: median deviation of hull features %+.4f m (spread %.4f m)\n"
                 "DVL residuals: std %.4f -> %.4f m, robust spread %.4f -> %.4f m, mean %+.4f -> %+.4f m\n"
                 "servo error %.2f -> %.2f deg; extrinsic %.4f -> %.4f m, %.2f -> %.2f deg\n",
-                landmarks, landmark_rmse, unobservable_dof, landmark_rmse_raw, landmark_rmse_hull,
-                landmark_rmse_objects, 100 * label_agreement, labels_checked, hull_feature_offset, hull_feature_spread,
                 dvl_std_initial, dvl_std_final, dvl_mad_initial, dvl_mad_final, dvl_mean_initial, dvl_mean_final,
                 servo_error_initial_deg, servo_error_final_deg, extrinsic_error_initial_m, extrinsic_error_final_m,
                 extrinsic_error_initial_deg, extrinsic_error_final_deg);
   s += buf;
   for (const auto& o : objects) {
-    std::snprintf(buf, sizeof(buf),
-                  "  %-10s %-8s height %.3f m, mean deviation %.3f m (truth %.3f m) over %d landmarks\n", o.id.c_str(),
-                  o.kind.c_str(), o.height, o.mean_deviation, o.true_mean_deviation, o.landmarks);
+    if (o.landmarks == 0) {
+      std::snprintf(buf, sizeof(buf), "  %-10s %-8s height %.3f m: not observed (no landmark on it)\n", o.id.c_str(),
+                    o.kind.c_str(), o.height);
+    } else {
+      std::snprintf(buf, sizeof(buf),
+                    "  %-10s %-8s height %.3f m, mean deviation %.3f m (truth %.3f m) over %d landmarks\n",
+                    o.id.c_str(), o.kind.c_str(), o.height, o.mean_deviation, o.true_mean_deviation, o.landmarks);
+    }
     s += buf;
   }
   return s;

@@ -7,6 +7,8 @@
 #include <mutex>
 #include <optional>
 
+#include "base/csv.h"
+#include "base/error.h"
 #include "geometry/mesh_index.h"
 #include "geometry/point_index.h"
 #include "mapping/detected_objects.h"
@@ -42,10 +44,24 @@ struct ShapeKey {
 struct InspectionKey {
   int stations;
   double bottom_angle, spacing, range;
+  int min_points;
   bool operator==(const InspectionKey& o) const {
-    return stations == o.stations && bottom_angle == o.bottom_angle && spacing == o.spacing && range == o.range;
+    return stations == o.stations && bottom_angle == o.bottom_angle && spacing == o.spacing && range == o.range &&
+           min_points == o.min_points;
   }
 };
+
+// The top cameras whose keyframes observed at least min_points landmarks:
+// a keyframe with fewer than DBSCAN needs for a cluster can detect nothing,
+// so what its camera saw is not counted as inspected (images that showed
+// nothing never rate a zone).
+std::vector<Pose> InspectingCameras(const MappingInput& input, const std::vector<Pose>& x_M_cT, int min_points) {
+  std::vector<Pose> out;
+  for (std::size_t k = 0; k < input.keyframes.size(); ++k) {
+    if (static_cast<int>(input.keyframes[k].landmarks.size()) >= min_points) out.push_back(x_M_cT[k]);
+  }
+  return out;
+}
 
 // The refined mesh with the structures built over it.
 struct Refined {
@@ -128,6 +144,11 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   r.options = o;
   MappingSummary& s = r.summary;
   s.source = input.source;
+  if (input.landmarks.empty()) {
+    throw InsufficientData("mapping",
+                           "the adjustment holds no landmarks: nothing was measured on the hull, so nothing can be "
+                           "mapped or rated");
+  }
 
   // Algorithm 1 per keyframe.
   auto t = Clock::now();
@@ -282,17 +303,23 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
 
   // The inspected area (cached).
   t = Clock::now();
-  const InspectionKey ik{o.stations, o.bottom_angle_deg, o.inspection_spacing, o.inspection_range};
+  const InspectionKey ik{o.stations, o.bottom_angle_deg, o.inspection_spacing, o.inspection_range, o.dbscan_min_points};
   if (!inspection_key || !(*inspection_key == ik)) {
     progress.Update(0.85, "measuring the inspected area");
     inspection_key.reset();
     hull = MakeHullFrame(cad, input.model_axes, input.x_gM, o.stations, o.bottom_angle_deg);
     SubProgress inspection_progress(progress, 0.85, 0.95);
-    inspection = MeasureInspection(cad, *cad_index, hull, x_M_cT, input.camera, o.inspection_spacing,
-                                   o.inspection_range, inspection_progress);
+    inspection = MeasureInspection(cad, *cad_index, hull, InspectingCameras(input, x_M_cT, o.dbscan_min_points),
+                                   input.camera, o.inspection_spacing, o.inspection_range, inspection_progress);
     inspection_key = ik;
   }
   s.seconds.inspection = Since(t);
+  if (inspection.total_inspected_area <= 0) {
+    throw InsufficientData("mapping", "the survey inspected none of the model: no keyframe with " +
+                                          std::to_string(o.dbscan_min_points) +
+                                          " landmarks or more sees the CAD surface within " +
+                                          FormatDouble(o.inspection_range) + " m (a wrong mesh or model pose?)");
+  }
 
   // Objects and the assessment.
   t = Clock::now();
