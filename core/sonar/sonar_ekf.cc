@@ -276,7 +276,7 @@ double SonarEkf::Update(const std::vector<Obs>& obs) {
     }
     const Eigen::LLT<Eigen::MatrixXd> llt(S);
     if (llt.info() != Eigen::Success) {
-      throw std::runtime_error("SonarEkf: innovation covariance is not positive definite");
+      throw SonarNumericalError(step_, "the innovation covariance is not positive definite");
     }
     // W = L^-1 M^T with S = L L^T: M S^-1 M^T = W^T W, K^T = L^-T W.
     const Eigen::MatrixXd W = llt.matrixL().solve(M.transpose());
@@ -305,7 +305,9 @@ double SonarEkf::Update(const std::vector<Obs>& obs) {
   for (const Clone& c : clones_) WrapPoseAngles(x_, c.offset);
   P_.triangularView<Eigen::StrictlyUpper>() = P_.transpose();
   for (Eigen::Index i = 0; i < N; ++i) {
-    if (!(P_(i, i) > 0)) throw std::runtime_error("SonarEkf: the covariance lost positive definiteness");
+    if (!(P_(i, i) > 0) || !std::isfinite(P_(i, i))) {
+      throw SonarNumericalError(step_, "the covariance lost positive definiteness");
+    }
   }
   return nis;
 }

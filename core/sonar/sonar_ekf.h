@@ -38,6 +38,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -47,6 +48,22 @@
 #include "survey/acoustic_sequence.h"
 
 namespace hull {
+
+// The filter's arithmetic broke down at a step: an innovation covariance
+// that is not positive definite, a covariance that lost positive
+// definiteness, hypothesis weights that are not finite. On a sequence that
+// passed the reader's plausibility bounds this should not happen; callers
+// that know the sequence (RunSonarPipeline) turn it into an InputError
+// naming the file and the fields that feed the filter's numbers.
+class SonarNumericalError : public std::runtime_error {
+ public:
+  SonarNumericalError(std::int64_t step, const std::string& what)
+      : std::runtime_error("SonarEkf at step " + std::to_string(step) + ": " + what), step_(step) {}
+  std::int64_t step() const { return step_; }
+
+ private:
+  std::int64_t step_;
+};
 
 class SonarEkf {
  public:

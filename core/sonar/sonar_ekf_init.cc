@@ -149,6 +149,10 @@ void SonarEkf::WeighPending(Pending& pd, const SonarMeasurement& m) const {
     S(1, 1) += noise[1] * noise[1];
     const Eigen::Vector2d nu(m.range - predictions[h].z[0], WrapAngle(m.azimuth - predictions[h].z[1]));
     pd.log_weight[h] += -0.5 * nu.dot(S.ldlt().solve(nu)) - 0.5 * std::log(S.determinant());
+    if (!std::isfinite(pd.log_weight[h])) {
+      throw SonarNumericalError(
+          step_, "the weight of an elevation hypothesis of feature " + std::to_string(pd.id) + " is not finite");
+    }
   }
   // Normalise (best = 0) and prune.
   const double best = *std::max_element(pd.log_weight.begin(), pd.log_weight.end());

@@ -29,6 +29,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Plausibility bounds of an acoustic sequence (issue 23): finite values that
+// no imaging sonar or vehicle gives, refused with the reason before they
+// reach the filter (a sigma of 1e19 or a turn of 1e308 rad per step broke
+// its arithmetic). Listed in docs/validation.md.
+constexpr double kMaxSonarRange = 1000;        // m: imaging sonars reach about 100 m
+constexpr double kMaxPoseSigma = 1000;         // m: an initial position known to within a kilometre
+constexpr double kMaxAngleSigma = 2 * M_PI;    // rad: one turn
+constexpr double kMaxStepTranslation = 1000;   // m per step
+constexpr double kMaxStepRotation = 2 * M_PI;  // rad per step
+constexpr double kMaxNoiseRate = 10;           // motion noise per metre or radian: 1000 %
+constexpr double kMaxTranslationFloor = 100;   // m per step
+constexpr double kMaxPosition = 1e7;           // m: UTM northings reach 1e7
+constexpr double kMaxAngle = 64 * M_PI;        // rad: an unwrapped angle of 32 turns
+
 constexpr const char* kFormat = "hull-sonar";
 constexpr int kVersion = 1;       // without images
 constexpr int kImageVersion = 2;  // with the image block and images/
@@ -172,6 +186,18 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
     positive("elevation_fov", q.elevation_fov);
     positive("range_sigma", q.range_sigma);
     positive("azimuth_sigma", q.azimuth_sigma);
+    auto at_most = [&](std::string_view key, double value, double bound, const std::string& why) {
+      if (s.Has(key) && value > bound) {
+        sink.Report(s.Where(s.Required(key), std::string(key)),
+                    std::string(key) + " " + FormatDouble(value) + " is implausible: " + why);
+      }
+    };
+    at_most("range_max", q.range_max, kMaxSonarRange,
+            "no imaging sonar reaches " + FormatDouble(kMaxSonarRange) + " m");
+    at_most("range_sigma", q.range_sigma, std::max(0.0, q.range_max - q.range_min),
+            "a range standard deviation must not exceed the range window range_max - range_min");
+    at_most("azimuth_sigma", q.azimuth_sigma, q.azimuth_fov,
+            "an azimuth standard deviation must not exceed the field of view azimuth_fov");
     if (s.Has("range_max") && q.range_max <= q.range_min) {
       sink.Report(s.Where(s.Required("range_max"), "range_max"),
                   "range_max " + FormatDouble(q.range_max) + " must exceed range_min " + FormatDouble(q.range_min));
@@ -187,14 +213,29 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
   });
   Guard(sink, [&] {
     const std::vector<double> v = r.Numbers("initial_pose", 6);
+    for (int i = 0; i < 6; ++i) {
+      const double bound = i < 3 ? kMaxPosition : kMaxAngle;
+      if (std::fabs(v[static_cast<std::size_t>(i)]) > bound) {
+        r.Fail(r.Required("initial_pose"), "initial_pose",
+               "entry " + std::to_string(i + 1) + " (" + FormatDouble(v[static_cast<std::size_t>(i)]) +
+                   ") is implausible: beyond " + FormatDouble(bound) + (i < 3 ? " m" : " rad"));
+      }
+    }
     seq.initial_pose = Eigen::Map<const Vector6d>(v.data());
   });
   Guard(sink, [&] {
     const std::vector<double> v = r.Numbers("initial_pose_sigma", 6);
-    for (double x : v) {
+    for (int i = 0; i < 6; ++i) {
+      const double x = v[static_cast<std::size_t>(i)];
       if (!(x > 0)) {
         r.Fail(r.Required("initial_pose_sigma"), "initial_pose_sigma",
                "every standard deviation must be positive, got " + FormatDouble(x));
+      }
+      const double bound = i < 3 ? kMaxPoseSigma : kMaxAngleSigma;
+      if (x > bound) {
+        r.Fail(r.Required("initial_pose_sigma"), "initial_pose_sigma",
+               "entry " + std::to_string(i + 1) + " (" + FormatDouble(x) + ") is implausible: at most " +
+                   FormatDouble(bound) + (i < 3 ? " m (a position known to within a kilometre)" : " rad (a turn)"));
       }
     }
     seq.initial_pose_sigma = Eigen::Map<const Vector6d>(v.data());
@@ -202,16 +243,20 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
   Guard(sink, [&] {
     const JsonReader m = r.Object("motion_noise");
     SonarMotionNoise& q = seq.motion_noise;
-    auto non_negative = [&](std::string_view key, double& out, bool required) {
+    auto non_negative = [&](std::string_view key, double& out, bool required, double bound, const char* why) {
       Guard(sink, [&] {
         out = required ? m.Number(key) : m.NumberOr(key, out);
         if (out < 0) m.Fail(m.Required(key), key, "must not be negative, got " + FormatDouble(out));
+        if (out > bound) {
+          m.Fail(m.Required(key), key,
+                 FormatDouble(out) + " is implausible: at most " + FormatDouble(bound) + " (" + why + ")");
+        }
       });
     };
-    non_negative("translation_per_metre", q.translation_per_metre, true);
-    non_negative("rotation_per_radian", q.rotation_per_radian, true);
-    non_negative("translation_floor", q.translation_floor, false);
-    non_negative("rotation_floor", q.rotation_floor, false);
+    non_negative("translation_per_metre", q.translation_per_metre, true, kMaxNoiseRate, "1000 % of the motion");
+    non_negative("rotation_per_radian", q.rotation_per_radian, true, kMaxNoiseRate, "1000 % of the motion");
+    non_negative("translation_floor", q.translation_floor, false, kMaxTranslationFloor, "m per step");
+    non_negative("rotation_floor", q.rotation_floor, false, kMaxAngleSigma, "rad per step: a turn");
   });
 }
 
@@ -263,7 +308,14 @@ bool ReadControls(ProblemSink& sink, const std::string& dir, AcousticSequence& s
   ForEachRow(sink, *csv, [&] {
     SonarControl c;
     c.step = csv->Int(col[0]);
-    for (int i = 0; i < 6; ++i) c.u[i] = csv->Double(col[i + 1]);
+    for (int i = 0; i < 6; ++i) {
+      c.u[i] = csv->Double(col[i + 1]);
+      const double bound = i < 3 ? kMaxStepTranslation : kMaxStepRotation;
+      if (std::fabs(c.u[i]) > bound) {
+        csv->Fail(col[i + 1], std::string(names[i + 1]) + " " + FormatDouble(c.u[i]) + " is implausible: at most " +
+                                  FormatDouble(bound) + (i < 3 ? " m per step" : " rad per step (a turn)"));
+      }
+    }
     if (c.step < 1)
       csv->Fail(col[0], "control steps start at 1 (step 0 has no control row), got " + std::to_string(c.step));
     rows.push_back({c.step, csv->line(), csv->Where(col[0]).column});
