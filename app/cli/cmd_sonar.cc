@@ -11,9 +11,7 @@
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "results/sonar_files.h"
-#include "sonar/sonar_image_runner.h"
-#include "sonar/sonar_runner.h"
-#include "sonar/sonar_smoother_run.h"
+#include "sonar/sonar_pipeline.h"
 #include "survey/acoustic_sequence.h"
 
 namespace hull::cli {
@@ -81,7 +79,9 @@ DIR must be new, empty or a results folder HullInspect wrote (checked before
 any work); it is replaced as a whole: a run that fails or is killed leaves
 the previous folder whole (docs/results-format.md).
 
-exit codes: 0 done, 2 bad command line or options, 3 malformed sequence
+exit codes: 0 done, 2 bad command line or options, 3 malformed sequence,
+            4 insufficient data (no measurement, images without a detection or
+            that look like noise, no feature confirmed: nothing is written)
 )";
 
 std::string SequenceFolder(const std::string& path) {
@@ -106,8 +106,12 @@ void PrintSonarSummary(const SonarPipelineResult& result, const std::string& dir
               r.filter_seconds > 0 ? r.steps.size() / r.filter_seconds : 0.0);
   if (r.has_truth) {
     const SonarStepErrors& e = *last.errors;
-    std::printf("final mean feature error %.4f m; position error %.4f m (dead reckoning %.4f m)\n",
-                e.mean_feature_error, e.position, e.dr_position);
+    if (e.features > 0) {
+      std::printf("final mean feature error %.4f m over %d features with truth; ", e.mean_feature_error, e.features);
+    } else {
+      std::printf("truth: no feature in the state stands for a true feature (no feature error); ");
+    }
+    std::printf("position error %.4f m (dead reckoning %.4f m)\n", e.position, e.dr_position);
   }
   if (images && images->has_truth) {
     const SonarImageEvaluation& e = images->evaluation;
@@ -123,7 +127,7 @@ void PrintSonarSummary(const SonarPipelineResult& result, const std::string& dir
         "%.1f ms + %.1f ms covariances%s\n",
         sr.iterations, sr.initial_cost, sr.final_cost, held_out, 1e3 * sr.solve_seconds, 1e3 * sr.covariance_seconds,
         sr.covariance_ok || !smoother_options.covariances ? "" : " (FAILED)");
-    if (smoother->errors) {
+    if (smoother->errors && smoother->errors->features > 0) {
       const SonarSmootherErrors& e = *smoother->errors;
       std::printf("smoother: final mean feature error %.4f m; position error %.4f m; joint NEES %.2f / %d dof\n",
                   e.mean_feature_error, e.position, e.joint_nees, e.joint_nees_dof);
@@ -155,63 +159,31 @@ int RunSonar(const CommandArgs& argv) {
   const OutputFolder out{a.Get("out"), a.Has("force")};
   CheckResultsFolder(out);
 
-  SonarRunOptions options;  // not const: from images, the image chain's
-  options.ekf.init = ParseSonarInit(a.Get("init", "hypotheses"));
-  options.ekf.hypotheses = static_cast<int>(a.GetInt("hypotheses", options.ekf.hypotheses));
-  options.ekf.collapse_probability = a.GetDouble("collapse", options.ekf.collapse_probability);
-  options.ekf.max_delay_steps = static_cast<int>(a.GetInt("max-delay", options.ekf.max_delay_steps));
-  options.ekf.paper_elevation_sigma_fraction = a.GetDouble("paper-sigma", options.ekf.paper_elevation_sigma_fraction);
-  options.ekf.joseph = !a.Has("short-form");
-  std::string why;
-  if (!options.Check(&why)) {
-    const auto colon = why.find(':');
-    throw OptionError(why.substr(0, colon), why.substr(colon + 2));
-  }
-
-  SonarImageRunOptions image_options;
-  image_options.run.ekf = options.ekf;
-  image_options.run.ekf.confirm_views = static_cast<int>(a.GetInt("confirm", 3));
-  image_options.tracker.gate_probability = a.GetDouble("gate", image_options.tracker.gate_probability);
-  image_options.tracker.drop_misses = static_cast<int>(a.GetInt("drop-misses", image_options.tracker.drop_misses));
-  image_options.detector.min_contrast = a.GetDouble("min-contrast", image_options.detector.min_contrast);
-  if (!image_options.Check(&why)) {
-    const auto colon = why.find(':');
-    throw OptionError(why.substr(0, colon), why.substr(colon + 2));
-  }
-
-  SonarSmootherOptions smoother_options;
-  smoother_options.max_iterations = static_cast<int>(a.GetInt("smoother-iterations", smoother_options.max_iterations));
-  smoother_options.covariances = !a.Has("no-smoother-covariance");
-  if (!smoother_options.Check(&why)) {
-    const auto colon = why.find(':');
-    throw OptionError(why.substr(0, colon), why.substr(colon + 2));
-  }
+  SonarPipelineOptions o;
+  if (a.Has("from-images")) o.source = SonarFeatureSource::kImages;
+  if (a.Has("from-measurements")) o.source = SonarFeatureSource::kMeasurements;
+  SonarEkfOptions& ekf = o.run.ekf;
+  ekf.init = ParseSonarInit(a.Get("init", "hypotheses"));
+  ekf.hypotheses = static_cast<int>(a.GetInt("hypotheses", ekf.hypotheses));
+  ekf.collapse_probability = a.GetDouble("collapse", ekf.collapse_probability);
+  ekf.max_delay_steps = static_cast<int>(a.GetInt("max-delay", ekf.max_delay_steps));
+  ekf.paper_elevation_sigma_fraction = a.GetDouble("paper-sigma", ekf.paper_elevation_sigma_fraction);
+  ekf.joseph = !a.Has("short-form");
+  o.images.run.ekf = ekf;
+  o.images.run.ekf.confirm_views = static_cast<int>(a.GetInt("confirm", 3));
+  o.images.tracker.gate_probability = a.GetDouble("gate", o.images.tracker.gate_probability);
+  o.images.tracker.drop_misses = static_cast<int>(a.GetInt("drop-misses", o.images.tracker.drop_misses));
+  o.images.detector.min_contrast = a.GetDouble("min-contrast", o.images.detector.min_contrast);
+  o.smoother = a.Has("smoother");
+  o.smoother_options.max_iterations =
+      static_cast<int>(a.GetInt("smoother-iterations", o.smoother_options.max_iterations));
+  o.smoother_options.covariances = !a.Has("no-smoother-covariance");
+  o.Check();
 
   const std::string dir = SequenceFolder(a.positionals()[0]);
   const AcousticSequence seq = ReadAcousticSequence(dir);
-  const bool from_images = a.Has("from-images") || (!a.Has("from-measurements") && !seq.has_measurements);
-  if (from_images && !seq.image) throw UsageError("'" + dir + "' has no images (a version 1 sequence)");
-  if (!from_images && !seq.has_measurements) {
-    throw UsageError("'" + dir + "' has no measurements.csv; its features can only come from its images");
-  }
   ConsoleProgress progress(a.Has("quiet"));
-  SonarPipelineResult result;
-  result.sequence = std::filesystem::absolute(dir).lexically_normal().string();
-  result.from_images = from_images;
-  result.image_options = image_options;
-  result.smoother_options = smoother_options;
-  result.measurements = static_cast<std::int64_t>(seq.measurements.size());
-  if (from_images) {
-    result.images = RunSonarImages(seq, dir, image_options, &progress);
-    options = image_options.run;
-  }
-  result.options = options;
-  result.run = result.images ? result.images->run : RunSonarSequence(seq, options, &progress);
-  if (a.Has("smoother")) {
-    const std::optional<SonarImageRunResult>& images = result.images;
-    result.smoother = RunSonarSmoother(seq, result.run, images ? AssociatedMeasurements(*images) : seq.measurements,
-                                       smoother_options, images ? &images->truth_of : nullptr, &progress);
-  }
+  const SonarPipelineResult result = RunSonarPipeline(seq, dir, o, progress);
   progress.Finish();
   SonarWriteOptions write;
   write.final_only = a.Has("final-only");

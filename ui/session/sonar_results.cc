@@ -7,7 +7,7 @@
 
 #include "geometry/mesh_io.h"
 #include "simulate/sonar_image_simulator.h"
-#include "sonar/sonar_image_runner.h"
+#include "sonar/sonar_pipeline.h"
 #include "survey/sonar_image.h"
 
 namespace hull::ui {
@@ -69,53 +69,43 @@ SonarRun RunSonarJob(std::shared_ptr<const SonarJobInput> shared, const SonarJob
   run.name = input.name;
   run.scene = input.scene;
   const bool images_available = seq.image && (!input.directory.empty() || input.images);
-  run.from_images = options.from_images && images_available;
-  if (!run.from_images && !seq.has_measurements) {
+  SonarPipelineOptions o;
+  o.source = options.from_images && images_available ? SonarFeatureSource::kImages : SonarFeatureSource::kMeasurements;
+  o.run.ekf.init = options.init;
+  o.images.run.ekf.init = options.init;
+  o.smoother = options.smoother;
+  if (o.source == SonarFeatureSource::kMeasurements && !seq.has_measurements) {
     throw std::invalid_argument("'" + input.name +
                                 "' has no measurements.csv: its features can only come from its images");
   }
-  const double ekf_share = options.smoother ? 0.6 : 1.0;
-  std::optional<SonarImageRunResult> images;
-  {
-    SubProgress p(progress, 0.0, ekf_share);
-    if (run.from_images) {
-      SonarImageRunOptions o;
-      o.run.ekf.init = options.init;
-      o.run.keep_features = true;
-      const SonarImageFormat format = *seq.image;
-      std::vector<cv::Mat> kept(static_cast<std::size_t>(seq.num_steps()));
-      const std::function<cv::Mat(int)> read = [&](int k) {
-        cv::Mat m = input.images ? input.images->at(static_cast<std::size_t>(k))
-                                 : ReadSonarImage(SonarImagePath(input.directory, k), format);
-        kept[static_cast<std::size_t>(k)] = m;
-        return m;
-      };
-      images = RunSonarImages(seq, read, o, &p);
-      run.result = images->run;
-      run.frames.resize(images->steps.size());
-      for (std::size_t k = 0; k < images->steps.size(); ++k) {
-        const SonarImageStep& s = images->steps[k];
-        SonarFrame& f = run.frames[k];
-        f.image = kept[k];
-        f.detections = s.detections;
-        f.predictions = s.track.predictions;
-        f.feature = s.track.feature;
-        f.pairing = s.track.pairing;
-      }
-    } else {
-      SonarRunOptions o;
-      o.ekf.init = options.init;
-      o.keep_features = true;
-      run.result = RunSonarSequence(seq, o, &p);
+  // The images the chain reads, kept for the fan view.
+  std::vector<cv::Mat> kept(static_cast<std::size_t>(seq.num_steps()));
+  std::function<cv::Mat(int)> read;
+  if (o.source == SonarFeatureSource::kImages) {
+    const SonarImageFormat format = *seq.image;
+    read = [&](int k) {
+      cv::Mat m = input.images ? input.images->at(static_cast<std::size_t>(k))
+                               : ReadSonarImage(SonarImagePath(input.directory, k), format);
+      kept[static_cast<std::size_t>(k)] = m;
+      return m;
+    };
+  }
+  SonarPipelineResult result = RunSonarPipeline(seq, input.directory, o, progress, read);
+  run.from_images = result.from_images;
+  run.result = std::move(result.run);
+  if (result.images) {
+    run.frames.resize(result.images->steps.size());
+    for (std::size_t k = 0; k < result.images->steps.size(); ++k) {
+      const SonarImageStep& s = result.images->steps[k];
+      SonarFrame& f = run.frames[k];
+      f.image = kept[k];
+      f.detections = s.detections;
+      f.predictions = s.track.predictions;
+      f.feature = s.track.feature;
+      f.pairing = s.track.pairing;
     }
   }
-  if (options.smoother) {
-    progress.Update(ekf_share, "running the batch smoother");
-    SubProgress p(progress, ekf_share, 1.0);
-    const std::vector<SonarMeasurement> measurements = images ? AssociatedMeasurements(*images) : seq.measurements;
-    run.smoother = RunSonarSmoother(seq, run.result, measurements, SonarSmootherOptions(),
-                                    images ? &images->truth_of : nullptr, &p);
-  }
+  run.smoother = std::move(result.smoother);
   run.sequence = input.sequence;
   run.input = std::move(shared);
   Summarise(run);
