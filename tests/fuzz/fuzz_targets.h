@@ -12,6 +12,10 @@ namespace hull::fuzz {
 // `sonar`) in `base` by the input and runs the reader and the validator.
 void BundleFile(const char* base, const char* file, bool sonar, const std::uint8_t* data, std::size_t size);
 
+// The same for an acoustic sequence, then, when it reads, the whole sonar
+// chain on it (sonar_fuzz.cc, the hull_fuzzsonar library).
+void SonarChainFile(const char* base, const char* file, const std::uint8_t* data, std::size_t size);
+
 // Writes the input to "input.<extension>" and runs LoadMesh and LoadPointCloud.
 void MeshFile(const char* extension, const std::uint8_t* data, std::size_t size);
 

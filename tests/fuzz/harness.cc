@@ -1,6 +1,7 @@
 // The entry points of the bundle and mesh harnesses, one executable per
 // input file kind (tests/fuzz/CMakeLists.txt): HI_FUZZ_BASE and HI_FUZZ_FILE
-// (and HI_FUZZ_SONAR) select a bundle file, HI_FUZZ_EXT a mesh format,
+// (and HI_FUZZ_SONAR: an acoustic sequence's, run through the sonar chain)
+// select a bundle file, HI_FUZZ_EXT a mesh format,
 // HI_FUZZ_PLUGIN_DIR a plugin folder to load first.
 #include <cstddef>
 #include <cstdint>
@@ -17,7 +18,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
 #if defined(HI_FUZZ_BASE)
 #ifdef HI_FUZZ_SONAR
-  hull::fuzz::BundleFile(HI_FUZZ_BASE, HI_FUZZ_FILE, true, data, size);
+  hull::fuzz::SonarChainFile(HI_FUZZ_BASE, HI_FUZZ_FILE, data, size);
 #else
   hull::fuzz::BundleFile(HI_FUZZ_BASE, HI_FUZZ_FILE, false, data, size);
 #endif
