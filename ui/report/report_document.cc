@@ -44,8 +44,8 @@ void CheckInputs(const ReportInputs& in) {
 }
 
 std::vector<std::string> SectionIds() {
-  return {"summary", "method", "deviation", "uncertainty", "cross-section", "photomosaic",
-          "objects", "zones",  "change",    "solver",      "evaluation",    "not-inspected"};
+  return {"summary",     "not-inspected", "method", "deviation", "uncertainty", "cross-section",
+          "photomosaic", "objects",       "zones",  "change",    "solver",      "evaluation"};
 }
 
 const Section* ReportDocument::Find(const std::string& id) const {
@@ -200,6 +200,7 @@ Section SummarySection(const ReportInputs& in, const HullFrame& hull) {
     f.emplace_back("Inspected area", Num(ms.inspected_area, 1) + " m² of " + Rounded(ms.hull_area) + " m² (" +
                                          Percent(ms.hull_area > 0 ? ms.inspected_area / ms.hull_area : 0, 2) + ")");
   }
+  f.emplace_back("Not seen", NotSeenSummary(in));
   f.emplace_back("Ground truth", b.truth ? "present (a simulated survey): see the evaluation" : "none");
   if (!in.results_path.empty()) f.emplace_back("Results", in.results_path);
   if (in.run_seconds > 0) f.emplace_back("Run time", Duration(in.run_seconds));
@@ -336,6 +337,7 @@ ReportDocument BuildReportDocument(const ReportInputs& in, const ReportOptions& 
   d.subtitle = in.bundle->manifest.name;
   d.generated = generated;
   d.sections.push_back(SummarySection(in, hull));
+  d.sections.push_back(NotInspectedSection(in));
   d.sections.push_back(MethodSection(in));
   d.sections.push_back(DeviationSection(in, options, figures));
   d.sections.push_back(UncertaintySection(in, options, figures));
@@ -346,7 +348,6 @@ ReportDocument BuildReportDocument(const ReportInputs& in, const ReportOptions& 
   d.sections.push_back(ChangeSection(in, figures));
   d.sections.push_back(SolverSection(in, figures));
   d.sections.push_back(EvaluationSection(in));
-  d.sections.push_back(NotInspectedSection(in));
   return d;
 }
 

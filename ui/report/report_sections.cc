@@ -303,6 +303,30 @@ Section EvaluationSection(const ReportInputs& in) {
   return s;
 }
 
+std::string NotSeenSummary(const ReportInputs& in) {
+  std::string text;
+  if (in.mapping) {
+    std::size_t missing = 0;
+    double area = 0, hull_area = 0;
+    for (const ZoneAssessment& z : in.mapping->zones) {
+      hull_area += z.hull_area;
+      if (z.rating != FoulingRating::kUninspected) continue;
+      ++missing;
+      area += z.hull_area;
+    }
+    text = Format("%zu of %zu zones uninspected, not rated (%.1f %% of the hull area); ", missing,
+                  in.mapping->zones.size(), hull_area > 0 ? 100 * area / hull_area : 0.0);
+  } else {
+    text = "mapping has not run: the inspected area is not known; ";
+  }
+  std::map<std::int64_t, int> seen;
+  for (const FeatureObservation& f : in.bundle->features) ++seen[f.keyframe];
+  std::size_t blind = 0;
+  for (const NavRecord& n : in.bundle->nav) blind += seen.count(n.keyframe) ? 0 : 1;
+  return text + Format("%zu of %zu keyframes without a feature (see \"What was not inspected\")", blind,
+                       in.bundle->nav.size());
+}
+
 Section NotInspectedSection(const ReportInputs& in) {
   const SurveyBundle& b = *in.bundle;
   const PipelineResult& p = *in.pipeline;

@@ -15,6 +15,8 @@ Section ZonesSection(const ReportInputs& in);
 Section SolverSection(const ReportInputs& in, const std::vector<FigureRef>& figures);
 Section EvaluationSection(const ReportInputs& in);
 Section NotInspectedSection(const ReportInputs& in);
+// The first section's one-line account of what was not seen (zones, keyframes).
+std::string NotSeenSummary(const ReportInputs& in);
 
 // report_trust_sections.cc: uncertainty, significance and change between
 // surveys. PlanTrustFigures appends, for every heatmap view already planned
