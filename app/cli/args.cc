@@ -21,8 +21,11 @@ Args::Args(const std::vector<std::string>& argv, std::set<std::string> flags) {
       } else if (flags.count(name)) {
         values_[name] = "1";
       } else {
-        if (i + 1 >= argv.size()) throw UsageError("option --" + name + " needs a value");
-        values_[name] = argv[++i];
+        if (i + 1 >= argv.size()) {
+          missing_value_.insert(name);  // refused later: as unknown when it is, else as lacking its value
+        } else {
+          values_[name] = argv[++i];
+        }
       }
     } else if (a == "-h") {
       values_["help"] = "1";
@@ -32,18 +35,25 @@ Args::Args(const std::vector<std::string>& argv, std::set<std::string> flags) {
   }
 }
 
+void Args::RefuseMissingValue(const std::string& name) const {
+  if (missing_value_.count(name)) throw UsageError("option --" + name + " needs a value");
+}
+
 std::string Args::Get(const std::string& name, const std::string& fallback) const {
+  RefuseMissingValue(name);
   auto it = values_.find(name);
   return it == values_.end() ? fallback : it->second;
 }
 
 std::optional<std::string> Args::Optional(const std::string& name) const {
+  RefuseMissingValue(name);
   auto it = values_.find(name);
   if (it == values_.end()) return std::nullopt;
   return it->second;
 }
 
 double Args::GetDouble(const std::string& name, double fallback) const {
+  RefuseMissingValue(name);
   auto it = values_.find(name);
   if (it == values_.end()) return fallback;
   double v = 0;
@@ -60,6 +70,7 @@ static long long GetIntImpl(const std::string& name, const std::string& text) {
 }
 
 long long Args::GetInt(const std::string& name, long long fallback) const {
+  RefuseMissingValue(name);
   auto it = values_.find(name);
   return it == values_.end() ? fallback : GetIntImpl(name, it->second);
 }
@@ -68,6 +79,10 @@ void Args::AllowOnly(const std::set<std::string>& allowed) const {
   for (const auto& [k, v] : values_) {
     if (k != "help" && !allowed.count(k)) throw UsageError("unknown option --" + k);
   }
+  for (const std::string& k : missing_value_) {
+    if (!allowed.count(k)) throw UsageError("unknown option --" + k);
+  }
+  if (!missing_value_.empty()) RefuseMissingValue(*missing_value_.begin());
 }
 
 void CheckOutputFolder(const std::string& path, const char* option) {

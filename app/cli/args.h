@@ -27,7 +27,10 @@ class Args {
   // "-h") always is one.
   Args(const std::vector<std::string>& argv, std::set<std::string> flags);
 
-  bool Has(const std::string& name) const { return values_.count(name) > 0; }
+  // An option given last without its value (and not a flag) counts as
+  // given: Has() is true and reading it throws "needs a value"; AllowOnly()
+  // names it as unknown first when it is not allowed.
+  bool Has(const std::string& name) const { return values_.count(name) > 0 || missing_value_.count(name) > 0; }
   std::string Get(const std::string& name, const std::string& fallback = "") const;
   // Throws UsageError when the value is not a number.
   double GetDouble(const std::string& name, double fallback) const;
@@ -38,7 +41,10 @@ class Args {
   void AllowOnly(const std::set<std::string>& allowed) const;
 
  private:
+  void RefuseMissingValue(const std::string& name) const;
+
   std::map<std::string, std::string> values_;
+  std::set<std::string> missing_value_;
   std::vector<std::string> positionals_;
 };
 

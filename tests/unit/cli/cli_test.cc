@@ -51,6 +51,9 @@ TEST(Cli, BadCommandLinesExitTwoNamingTheProblem) {
   r = Cli({"adjust", "somewhere", "--mesh"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("option --mesh needs a value"), std::string::npos) << r.output;
+  r = Cli({"run", "--bogus"});  // last on the line: unknown, not "needs a value"
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("unknown option --bogus"), std::string::npos) << r.output;
   r = Cli({"simulate", "--preset", "demo", "--out", "x", "--seed", "seven"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--seed expects an integer, got 'seven'"), std::string::npos) << r.output;
