@@ -22,5 +22,6 @@ int RunExport(const CommandArgs& args);    // cmd_export.cc   (the remeshed mode
 int RunFeatures(const CommandArgs& args);  // cmd_features.cc (visual front end: images -> features.csv)
 int RunPlugins(const CommandArgs& args);   // cmd_plugins.cc  (what loaded, what was refused)
 int RunMosaic(const CommandArgs& args);    // cmd_mosaic.cc   (3-D photomosaic of the remeshed model)
+int RunReport(const CommandArgs& args);    // cmd_report.cc   (the report of a results folder; needs hull_report)
 
 }  // namespace hull::cli

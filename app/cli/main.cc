@@ -32,6 +32,9 @@ const Command kCommands[] = {
     {"mosaic", hull::cli::RunMosaic, "3-D photomosaic: the remeshed model textured from the survey's images"},
     {"compare", hull::cli::RunCompare, "change between two surveys of one hull (per vertex and per object)"},
     {"sonar", hull::cli::RunSonar, "reconstruct features from an acoustic sequence with the sonar EKF"},
+#ifdef HI_HAVE_REPORT
+    {"report", hull::cli::RunReport, "the inspection report (PDF, HTML) of pipeline, comparison or sonar results"},
+#endif
     {"export", hull::cli::RunExport,
      "write the remeshed model of results as PLY, OBJ, STL or a plugin's format (glTF)"},
     {"plugins", hull::cli::RunPlugins, "list the plugins loaded and refused, their formats and options"},

@@ -91,8 +91,9 @@ TEST(HeadlessDemo, ABadCommandLineIsAUsageError) {
                                           QStringLiteral("--out"), kOut + QStringLiteral("/x")},
                                          30000);
   ASSERT_TRUE(missing.finished);
-  EXPECT_EQ(missing.exit_code, 1);
-  EXPECT_TRUE(missing.err.contains(QStringLiteral("summary.json")));
+  EXPECT_EQ(missing.exit_code, 3);  // bad input, named
+  EXPECT_TRUE(missing.err.contains(QStringLiteral("nothing-here: no such results folder")))
+      << missing.err.toStdString();
 }
 
 }  // namespace

@@ -20,6 +20,9 @@ std::unique_ptr<Figure> MakeFigure(const FigureRef& ref, const ReportInputs& inp
     case FigureKind::kDvlResiduals:
     case FigureKind::kModelTiming:
       return MakeSolverFigure(ref, inputs);
+    case FigureKind::kSonarPlan:
+    case FigureKind::kSonarErrors:
+      return MakeSonarFigure(ref, inputs);
   }
   throw std::invalid_argument("report: unknown figure kind");
 }

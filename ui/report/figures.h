@@ -57,5 +57,6 @@ std::unique_ptr<Figure> MakeHeatmapFigure(const FigureRef& ref, const ReportInpu
 std::unique_ptr<Figure> MakeCrossSectionFigure(const FigureRef& ref, const ReportInputs& inputs,
                                                const ReportOptions& options);
 std::unique_ptr<Figure> MakeSolverFigure(const FigureRef& ref, const ReportInputs& inputs);
+std::unique_ptr<Figure> MakeSonarFigure(const FigureRef& ref, const ReportInputs& inputs);  // sonar_figures.cc
 
 }  // namespace hull::report

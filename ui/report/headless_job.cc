@@ -11,17 +11,21 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
+#include "base/error.h"
 #include "base/progress.h"
 #include "pipeline/pipeline.h"
 #include "results/compare_files.h"
 #include "results/pipeline_job.h"
 #include "ui/report/report.h"
+#include "ui/report/report_job.h"
 #include "ui/report/results_reader.h"
 
 namespace hull::report {
 namespace {
 
-constexpr int kExitOk = 0, kExitFailed = 1, kExitUsage = 2;
+constexpr int kExitOk = 0, kExitFailed = 1, kExitUsage = 2, kExitBadInput = 3, kExitInsufficientData = 4;
 
 // Progress on stderr: a line per new message, or per 10 % of the same one.
 class StderrProgress final : public Progress {
@@ -105,21 +109,13 @@ int RunDemo(const HeadlessCommand& c) {
 int RunReport(const HeadlessCommand& c) {
   QElapsedTimer total;
   total.start();
-  Say("hullinspect: reading the results in %s\n", Native(c.results));
-  ReportInputs inputs = ReadReportInputs(c.results.toStdString());
-  if (!c.earlier.isEmpty()) {
-    StderrProgress p("comparing with the earlier survey");
-    inputs.comparison = std::make_shared<const SurveyComparisonRun>(RunSurveyComparison(
-        c.earlier.toStdString(), c.results.toStdString(), inputs.mesh_path, 1.0, SurveyCompareOptions{}, p));
-  }
-  const QDir out(QFileInfo(c.out).absoluteFilePath());
-  Say("hullinspect: %s\n", "writing the report");
-  const ReportFiles files =
-      WriteReport(inputs, out.filePath(QStringLiteral("report.html")), out.filePath(QStringLiteral("report.pdf")), {},
-                  out.filePath(QStringLiteral("figures")));
+  StderrProgress progress("report");
+  const ReportFiles files = RunFolderReport(
+      FolderReportRequest{c.results.toStdString(), c.earlier.toStdString(), OutputFolder{Native(c.out), false}},
+      "hullinspect --report", progress);
   std::printf("report:   %s\n          %s (%d pages)\n", Native(files.html).c_str(), Native(files.pdf).c_str(),
               files.pdf_pages);
-  std::printf("figures:  %s\n", Native(out.filePath(QStringLiteral("figures"))).c_str());
+  std::printf("figures:  %s\n", Native(QFileInfo(files.html).absolutePath() + QStringLiteral("/figures")).c_str());
   std::printf("time:     %.1f s\n", total.elapsed() / 1000.0);
   return kExitOk;
 }
@@ -192,7 +188,20 @@ QString HeadlessUsage() {
       "The batch front end is hullinspect-cli (e.g. hullinspect-cli run --demo --out DIR).\n");
 }
 
-void PrepareHeadless() { qputenv("QT_QPA_PLATFORM", "offscreen"); }
+void PrepareHeadless() {
+  qputenv("QT_QPA_PLATFORM", "offscreen");
+  // Without a session (a batch job, ssh, a container) Qt warns that
+  // XDG_RUNTIME_DIR is unset and makes its own: give it the same folder
+  // quietly (private to the user, as the specification asks).
+  if (qEnvironmentVariableIsEmpty("XDG_RUNTIME_DIR")) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("runtime-" + std::to_string(::getuid()));
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    std::filesystem::permissions(dir, std::filesystem::perms::owner_all, std::filesystem::perm_options::replace, ec);
+    if (!ec) qputenv("XDG_RUNTIME_DIR", QByteArray::fromStdString(dir.string()));
+  }
+}
 
 int RunHeadlessJob(const HeadlessCommand& c) {
   if (!c.error.isEmpty()) {
@@ -203,8 +212,18 @@ int RunHeadlessJob(const HeadlessCommand& c) {
     std::fputs(qPrintable(HeadlessUsage()), stdout);
     return kExitOk;
   }
+  // The exit codes hullinspect-cli documents (README, "Exit codes").
   try {
     return c.mode == HeadlessCommand::Mode::kDemo ? RunDemo(c) : RunReport(c);
+  } catch (const OptionError& e) {
+    std::fprintf(stderr, "hullinspect: %s\n", e.what());
+    return kExitUsage;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "hullinspect: %s\n", e.what());
+    return kExitBadInput;
+  } catch (const InsufficientData& e) {
+    std::fprintf(stderr, "hullinspect: %s\n", e.what());
+    return kExitInsufficientData;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "hullinspect: %s\n", e.what());
     return kExitFailed;

@@ -44,7 +44,8 @@ QString HeadlessUsage();
 // Sets QT_QPA_PLATFORM=offscreen for the QGuiApplication about to be made.
 void PrepareHeadless();
 
-// Runs the command; returns the process exit code (0 done, 1 failed, 2 usage).
+// Runs the command; returns the process exit code (0 done, 1 failed, 2 usage,
+// 3 bad input, 4 insufficient data: as hullinspect-cli).
 int RunHeadlessJob(const HeadlessCommand& command);
 
 }  // namespace hull::report

@@ -7,6 +7,7 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QSaveFile>
+#include <algorithm>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -48,7 +49,7 @@ QString GeneratedLine() {
 }
 
 ReportFiles WriteReport(const ReportInputs& inputs, const QString& html_path, const QString& pdf_path,
-                        const ReportOptions& options, const QString& figures_dir) {
+                        const ReportOptions& options, const QString& figures_dir, Progress* progress) {
   CheckInputs(inputs);
   QElapsedTimer timer;
   timer.start();
@@ -57,9 +58,15 @@ ReportFiles WriteReport(const ReportInputs& inputs, const QString& html_path, co
   std::map<std::string, std::unique_ptr<Figure>> figures;
   for (const FigureRef& r : refs) figures[r.id] = MakeFigure(r, inputs, options);
   std::map<std::string, QByteArray> png;
+  const auto step = [&](double fraction, const std::string& what) {
+    if (!progress) return;
+    progress->ThrowIfCancelled();
+    progress->Update(fraction, what);
+  };
   const auto png_of = [&](const FigureRef& r) -> QByteArray {
     auto it = png.find(r.id);
     if (it == png.end()) {
+      step(0.8 * static_cast<double>(png.size()) / std::max<std::size_t>(1, refs.size()), "drawing " + r.id);
       it = png.emplace(r.id, Png(RenderFigure(*figures.at(r.id), options.figure_width_px))).first;
     }
     return it->second;
@@ -74,11 +81,13 @@ ReportFiles WriteReport(const ReportInputs& inputs, const QString& html_path, co
     }
   }
   if (!html_path.isEmpty()) {
+    step(0.8, "writing the HTML");
     WriteBytes(html_path, ReportHtml(doc, png_of).toUtf8());
     files.html = html_path;
   }
   if (!pdf_path.isEmpty()) {
     // Written beside, then renamed: a failed run leaves no half a PDF behind.
+    step(0.85, "writing the PDF");
     MakeParent(pdf_path);
     const QString part = pdf_path + QStringLiteral(".part");
     files.pdf_pages = WriteReportPdf(
@@ -90,6 +99,7 @@ ReportFiles WriteReport(const ReportInputs& inputs, const QString& html_path, co
     }
     files.pdf = pdf_path;
   }
+  step(1.0, "report written");
   files.seconds = timer.elapsed() / 1000.0;
   return files;
 }

@@ -7,6 +7,7 @@
 #include "geometry/mesh_index.h"
 #include "ui/report/report_blocks.h"
 #include "ui/report/report_sections.h"
+#include "ui/report/sonar_report.h"
 
 namespace hull::report {
 namespace {
@@ -38,6 +39,10 @@ std::array<double, kZoneSides> LandmarksBySide(const ReportInputs& in, const Hul
 }  // namespace
 
 void CheckInputs(const ReportInputs& in) {
+  if (in.sonar) {
+    if (in.sonar->run.steps.empty()) throw std::invalid_argument("report: a sonar run without steps");
+    return;
+  }
   if (!in.bundle) throw std::invalid_argument("report: no survey bundle");
   if (!in.cad || in.cad->empty()) throw std::invalid_argument("report: no prior (CAD) mesh");
   if (!in.pipeline) throw std::invalid_argument("report: no pipeline result");
@@ -65,6 +70,7 @@ std::string RatingTone(const std::string& rating) {
 
 std::vector<FigureRef> PlanFigures(const ReportInputs& in, const ReportOptions& options) {
   CheckInputs(in);
+  if (in.sonar) return PlanSonarFigures(in);
   const HullFrame hull = ReportHullFrame(in);
   std::vector<FigureRef> out;
   // Heatmaps: the sides that hold at least a tenth of what was seen.
@@ -331,6 +337,7 @@ Section CrossSectionSection(const ReportInputs& in, const HullFrame& hull, const
 ReportDocument BuildReportDocument(const ReportInputs& in, const ReportOptions& options,
                                    const std::vector<FigureRef>& figures, const std::string& generated) {
   CheckInputs(in);
+  if (in.sonar) return BuildSonarReportDocument(in, options, figures, generated);
   const HullFrame hull = ReportHullFrame(in);
   ReportDocument d;
   d.title = options.title.empty() ? "Hull inspection report" : options.title;

@@ -22,6 +22,8 @@ enum class FigureKind {
   kConvergence,          // cost and fraction of lambda = 1 per iteration (Fig. 16)
   kDvlResiduals,         // DVL range residual histograms before and after (Fig. 18)
   kModelTiming,          // time per model (Fig. 17), only when the models were compared
+  kSonarPlan,            // a sonar run: the path and the features from above (sonar_report.h)
+  kSonarErrors,          // a sonar run with truth: the errors per step
 };
 
 struct FigureRef {
@@ -69,12 +71,15 @@ struct ReportDocument {
   const Section* Find(const std::string& id) const;
 };
 
-// Section ids, in order: summary, method, deviation, uncertainty,
-// cross-section, objects, zones, change, solver, evaluation, not-inspected. Every section is present; one
-// without data says why (e.g. mapping has not run, no ground truth).
+// Section ids of the hull report, in order: summary, not-inspected, method,
+// deviation, uncertainty, cross-section, photomosaic, objects, zones,
+// change, solver, evaluation (a sonar report's: SonarSectionIds()). Every
+// section is present; one without data says why (e.g. mapping has not run,
+// no ground truth).
 std::vector<std::string> SectionIds();
 
-// CheckInputs() first. generated: the line under the title.
+// CheckInputs() first. generated: the line under the title. With a sonar
+// run in the inputs, the sonar report (sonar_report.h).
 ReportDocument BuildReportDocument(const ReportInputs& inputs, const ReportOptions& options,
                                    const std::vector<FigureRef>& figures, const std::string& generated);
 

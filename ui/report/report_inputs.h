@@ -14,12 +14,17 @@
 #include "mapping/mapping_result.h"
 #include "pipeline/pipeline.h"
 #include "results/compare_files.h"
+#include "sonar/sonar_pipeline_result.h"
 #include "survey/survey.h"
 
 namespace hull::report {
 
 struct ReportInputs {
-  std::shared_ptr<const SurveyBundle> bundle;      // required
+  // A sonar run's report (sonar_report.h) when set: then only results_path
+  // and run_seconds of the rest are read, and bundle, cad and pipeline may
+  // be empty.
+  std::shared_ptr<const SonarPipelineResult> sonar;
+  std::shared_ptr<const SurveyBundle> bundle;      // required (but for a sonar report)
   std::shared_ptr<const TriangleMesh> cad;         // required: the prior (CAD) mesh in M
   std::shared_ptr<const PipelineResult> pipeline;  // required
   std::shared_ptr<const MappingResult> mapping;    // optional: without it the heatmap shows the landmarks
@@ -39,7 +44,8 @@ struct ReportInputs {
   std::string mosaic_path;  // shown in the section ("" : not shown)
 };
 
-// Throws std::invalid_argument naming the first required member missing.
+// Throws std::invalid_argument naming the first required member missing
+// (a sonar report needs only its sonar run, with at least one step).
 void CheckInputs(const ReportInputs& inputs);
 
 struct ReportOptions {

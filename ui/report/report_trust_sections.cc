@@ -88,7 +88,8 @@ Section ChangeSection(const ReportInputs& in, const std::vector<FigureRef>& figu
   if (!in.comparison) {
     s.blocks.push_back(
         Paragraph("No earlier survey of this hull was compared with this one (the GUI's Inspection ▸ Compare with…, or "
-                  "hullinspect --report RESULTS --compare-with EARLIER_RESULTS)."));
+                  "hullinspect-cli report RESULTS --compare-with EARLIER_RESULTS --out DIR, or the report of a "
+                  "comparison folder: hullinspect-cli report CHANGE --out DIR)."));
     return s;
   }
   const SurveyComparisonRun& r = *in.comparison;

@@ -232,3 +232,78 @@ TEST_F(CliResults, CompareRefusesAMeshTheResultsWereNotMappedAgainst) {
 }
 
 }  // namespace
+
+// hullinspect-cli report (issue 24, part 2): the report of a pipeline's, a
+// comparison's and a sonar run's results, each a results folder of its own.
+// The command exists where the report library is built (not with
+// -DHI_BUILD_GUI=OFF, as in the sanitizer build).
+bool IsPdf(const std::string& path) { return fs::exists(path) && ReadText(path).rfind("%PDF-", 0) == 0; }
+#ifdef HI_CLI_HAS_REPORT
+#define SKIP_WITHOUT_REPORT()
+#else
+#define SKIP_WITHOUT_REPORT() GTEST_SKIP() << "hullinspect-cli built without its report command (HI_BUILD_GUI=OFF)"
+#endif
+
+TEST_F(CliResults, ReportOfPipelineComparisonAndSonarResults) {
+  SKIP_WITHOUT_REPORT();
+  const ScratchDir tmp("cli_results_report");
+  CliRun r = Cli({"report", Results(), "--out", tmp / "hull", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(IsPdf(tmp / "hull/report.pdf"));
+  const std::string html = ReadText(tmp / "hull/report.html");
+  EXPECT_NE(html.find("What was not inspected"), std::string::npos);
+  EXPECT_NE(ReadText(tmp / "hull/.hullinspect-results.json").find("\"command\": \"report\""), std::string::npos);
+  // A pipeline's mapping/ alone stands for its pipeline.
+  EXPECT_EQ(Cli({"report", Results() + "/mapping", "--out", tmp / "from-mapping", "--quiet"}).exit_code, 0);
+
+  ASSERT_EQ(Cli({"compare", Results(), Results(), "--out", tmp / "change"}).exit_code, 0);
+  r = Cli({"report", tmp / "change", "--out", tmp / "change-report", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(IsPdf(tmp / "change-report/report.pdf"));
+  EXPECT_NE(ReadText(tmp / "change-report/report.html").find("Survey A (earlier)"), std::string::npos);
+
+  const std::string seq = tmp / "prism";
+  ASSERT_EQ(Cli({"simulate", "--preset", "sonar-prism", "--images", "--out", seq, "--quiet"}).exit_code, 0);
+  ASSERT_EQ(Cli({"sonar", seq, "--from-images", "--smoother", "--out", tmp / "sonar", "--quiet"}).exit_code, 0);
+  r = Cli({"report", tmp / "sonar", "--out", tmp / "sonar-report", "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(IsPdf(tmp / "sonar-report/report.pdf"));
+  const std::string sonar = ReadText(tmp / "sonar-report/report.html");
+  for (const char* section : {"Imaging-sonar report", "Consistency of the estimate", "Smoother", "Acoustic images",
+                              "Evaluation against truth"}) {
+    EXPECT_NE(sonar.find(section), std::string::npos) << section;
+  }
+  EXPECT_TRUE(fs::exists(tmp / "sonar-report/figures/sonar-plan.png"));
+}
+
+TEST_F(CliResults, ReportRefusesToReplaceItsResultsOrAUsersFolder) {
+  SKIP_WITHOUT_REPORT();
+  const ScratchDir tmp("cli_results_report_refused");
+  const auto before = Files(Results());
+  for (const std::string& out : {Results(), Results() + "/mapping", std::string(fs::path(Results()).parent_path())}) {
+    const CliRun r = Cli({"report", Results(), "--out", out, "--quiet"});
+    EXPECT_EQ(r.exit_code, 2) << out << ": " << r.output;
+    EXPECT_TRUE(Has(r, "--out " + out)) << r.output;
+  }
+  EXPECT_EQ(Files(Results()), before);
+  fs::create_directories(tmp / "mine");
+  WriteText(tmp / "mine/notes.txt", "mine");
+  CliRun r = Cli({"report", Results(), "--out", tmp / "mine", "--quiet"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(ReadText(tmp / "mine/notes.txt"), "mine");
+  r = Cli({"report", tmp / "nothing-here", "--out", tmp / "x", "--quiet"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_TRUE(Has(r, "nothing-here: no such results folder")) << r.output;
+  r = Cli({"report", Bundle(), "--out", tmp / "x", "--quiet"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_TRUE(Has(r, "holds no results a report can be written from")) << r.output;
+  EXPECT_FALSE(fs::exists(tmp / "x"));
+}
+
+TEST_F(CliResults, ReportKilledAtAnyRenameLeavesThePreviousReportWhole) {
+  SKIP_WITHOUT_REPORT();
+  const ScratchDir tmp("cli_results_kill_report");
+  const std::string out = tmp / "report";
+  ASSERT_EQ(Cli({"report", Results(), "--out", out, "--quiet"}).exit_code, 0);
+  KillAtEveryRename(out, {"report", Results(), "--out", out, "--quiet"}, tmp / "renames");
+}
