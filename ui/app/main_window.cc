@@ -28,6 +28,7 @@
 #include "ui/controllers/front_end_controller.h"
 #include "ui/controllers/inspection_controller.h"
 #include "ui/controllers/mosaic_controller.h"
+#include "ui/controllers/report_export_controller.h"
 #include "ui/jobs/job_runner.h"
 #include "ui/jobs/job_status_widget.h"
 #include "ui/panels/layers_panel.h"
@@ -62,6 +63,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   inspection_ = new InspectionController(session_, jobs_, this);
   front_end_ = new FrontEndController(session_, jobs_, this);
   mosaic_ = new MosaicController(session_, jobs_, this);
+  report_export_ = new ReportExportController(jobs_, this);
   recent_ = new RecentFiles(this);
 
   scene_ = new SceneView(this);

@@ -33,6 +33,7 @@ class JobStatusWidget;
 class KeyframeView;
 class LayersPanel;
 class MosaicController;
+class ReportExportController;
 class ObjectsPanel;
 class ParameterPanel;
 class PickInfoPanel;
@@ -90,6 +91,7 @@ class MainWindow : public QMainWindow {
   InspectionController* inspection() const { return inspection_; }
   FrontEndController* frontEnd() const { return front_end_; }
   MosaicController* mosaicBuilder() const { return mosaic_; }
+  ReportExportController* reportExporter() const { return report_export_; }
   ImagesView* imagesView() const { return images_; }
   SceneView* sceneView() const { return scene_; }
   LayersPanel* layersPanel() const { return layers_; }
@@ -137,6 +139,12 @@ class MainWindow : public QMainWindow {
   void AskExportResult(const QString& what);
   void AskExportScreenshots();
   void AskBuildMosaic();
+  // File > Export > Report: the report of the results on screen into a
+  // folder the user chooses (a job; see controllers/report_export_controller.h).
+  void AskExportReport();
+  // A folder of files HullInspect did not write: true when the user agrees
+  // to write `what` into it anyway (their files kept), false to stop.
+  bool ConfirmForeignFolder(const QString& folder, const QString& what);
   void RebuildRecentMenu();
   void UpdatePlacement();
   void UpdateTitle();
@@ -161,6 +169,7 @@ class MainWindow : public QMainWindow {
   InspectionController* inspection_ = nullptr;
   FrontEndController* front_end_ = nullptr;
   MosaicController* mosaic_ = nullptr;
+  ReportExportController* report_export_ = nullptr;
   ImagesView* images_ = nullptr;
   QDockWidget* images_dock_ = nullptr;
   RecentFiles* recent_ = nullptr;

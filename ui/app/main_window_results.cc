@@ -2,6 +2,7 @@
 // results (cross-section, solver plots, objects and zones, keyframe) and
 // their wiring to the Session, the InspectionController and the 3-D scene.
 #include <QAction>
+#include <QDesktopServices>
 #include <QDir>
 #include <QDockWidget>
 #include <QFile>
@@ -12,6 +13,7 @@
 #include <QMessageBox>
 #include <QStatusBar>
 #include <QTimer>
+#include <QUrl>
 #include <algorithm>
 
 #include "plugin/plugin_registry.h"
@@ -20,6 +22,7 @@
 #include "ui/controllers/document_controller.h"
 #include "ui/controllers/inspection_controller.h"
 #include "ui/controllers/mosaic_controller.h"
+#include "ui/controllers/report_export_controller.h"
 #include "ui/controllers/result_exports.h"
 #include "ui/controllers/survey_compare_controller.h"
 #include "ui/jobs/job_runner.h"
@@ -216,6 +219,11 @@ void MainWindow::ConnectResults() {
   connect(mosaic_, &MosaicController::message, this,
           [this](const QString& text) { statusBar()->showMessage(text, 15000); });
   connect(mosaic_, &MosaicController::stateChanged, this, &MainWindow::UpdateResultActions);
+  connect(report_export_, &ReportExportController::failed, this, &MainWindow::ReportError);
+  connect(report_export_, &ReportExportController::message, this,
+          [this](const QString& text) { statusBar()->showMessage(text, 15000); });
+  connect(report_export_, &ReportExportController::exported, this, &MainWindow::UpdateResultActions);
+  connect(session_, &Session::adjustmentChanged, this, &MainWindow::UpdateResultActions);
   // The Photomosaic group: used by the next build, re-runs nothing.
   connect(parameters_, &ParameterPanel::parametersChanged, mosaic_,
           [this](const ParameterValues& values) { mosaic_->SetOptions(MosaicOptionsFrom(values)); });
@@ -280,6 +288,11 @@ void MainWindow::AddResultExportEntries(QMenu* exports) {
   exports->addAction(NewAction(QStringLiteral("exportZones"), QStringLiteral("&Zones and ratings (CSV)…"), this,
                                [this] { AskExportResult(QStringLiteral("zones")); }));
   exports->addSeparator();
+  exports->addAction(NewAction(QStringLiteral("exportReport"), QStringLiteral("R&eport (PDF, HTML)…"), this,
+                               [this] { AskExportReport(); }));
+  exports->addAction(NewAction(QStringLiteral("openLastReport"), QStringLiteral("Open the last report's &PDF"), this,
+                               [this] { QDesktopServices::openUrl(QUrl::fromLocalFile(report_export_->lastPdf())); }));
+  exports->addSeparator();
   exports->addAction(NewAction(QStringLiteral("exportScreenshots"), QStringLiteral("&Screenshots of every view…"), this,
                                [this] { AskExportScreenshots(); }));
 }
@@ -311,6 +324,15 @@ void MainWindow::UpdateResultActions() {
     a->setToolTip(why.isEmpty() ? QStringLiteral("Texture the remeshed model from the survey's camera images with the "
                                                  "adjusted poses, into a results folder's mosaic/")
                                 : why);
+  }
+  if (QAction* a = action(QStringLiteral("exportReport")); a && report_export_) {
+    a->setEnabled(session_->adjustment() != nullptr);  // a second export replaces one running
+    a->setToolTip(session_->adjustment() ? QStringLiteral("Write the inspection report (PDF, HTML, figures) of the "
+                                                          "results on screen into a folder")
+                                         : QStringLiteral("Run the inspection first (Inspection ▸ Run)."));
+  }
+  if (QAction* a = action(QStringLiteral("openLastReport")); a && report_export_) {
+    a->setEnabled(!report_export_->lastPdf().isEmpty());
   }
   for (const char* name : {"exportModel", "exportObjects", "exportZones"}) {
     if (QAction* a = action(QString::fromLatin1(name))) a->setEnabled(exporter_ && exporter_->CanExport());
@@ -396,19 +418,42 @@ void MainWindow::AskBuildMosaic() {
   const QString folder = QFileDialog::getExistingDirectory(
       this, QStringLiteral("Build the photomosaic into a results folder (its mosaic/ folder)"), start);
   if (folder.isEmpty()) return;
-  // A folder of other files: the results go in beside them only when the
-  // user says so (hullinspect-cli's --force); nothing of theirs is replaced.
-  bool force = false;
-  if (ClassifyOutputFolder(QFile::encodeName(folder).toStdString()) == OutputFolderState::kForeign) {
-    const auto answer = QMessageBox::question(
-        this, QStringLiteral("Write into a folder of other files?"),
-        QStringLiteral("%1 holds files HullInspect did not write. Write the results and the photomosaic into it "
-                       "anyway? Your files are kept and none of them is replaced.")
-            .arg(QDir::toNativeSeparators(folder)));
-    if (answer != QMessageBox::Yes) return;
-    force = true;
+  const bool foreign = ClassifyOutputFolder(QFile::encodeName(folder).toStdString()) == OutputFolderState::kForeign;
+  if (foreign && !ConfirmForeignFolder(folder, QStringLiteral("the results and the photomosaic"))) return;
+  mosaic_->Build(folder, foreign);
+}
+
+// A folder of other files: the results go in beside them only when the user
+// says so (hullinspect-cli's --force); nothing of theirs is replaced.
+bool MainWindow::ConfirmForeignFolder(const QString& folder, const QString& what) {
+  const auto answer = QMessageBox::question(
+      this, QStringLiteral("Write into a folder of other files?"),
+      QStringLiteral("%1 holds files HullInspect did not write. Write %2 into it anyway? Your files are kept and none "
+                     "of them is replaced.")
+          .arg(QDir::toNativeSeparators(folder), what));
+  return answer == QMessageBox::Yes;
+}
+
+void MainWindow::AskExportReport() {
+  const std::optional<ReportSource> source = CollectReport();
+  if (!source) {
+    ReportError(QStringLiteral("Cannot export the report"),
+                QStringLiteral("There are no results to report: run the inspection first (Inspection ▸ Run)."));
+    return;
   }
-  mosaic_->Build(folder, force);
+  if (!source->up_to_date &&
+      QMessageBox::question(this, QStringLiteral("Report results of other parameters?"),
+                            QStringLiteral("The results on screen were computed with other parameters than those "
+                                           "now set (Inspection ▸ Run updates them). Write the report of the results "
+                                           "on screen?")) != QMessageBox::Yes) {
+    return;
+  }
+  const QString folder = QFileDialog::getExistingDirectory(
+      this, QStringLiteral("Write the report (report.pdf, report.html, figures/) into the folder"));
+  if (folder.isEmpty()) return;
+  const bool foreign = ClassifyOutputFolder(QFile::encodeName(folder).toStdString()) == OutputFolderState::kForeign;
+  if (foreign && !ConfirmForeignFolder(folder, QStringLiteral("the report"))) return;
+  report_export_->Export(ReportInputsOf(*source), folder, foreign);
 }
 
 std::optional<ReportSource> MainWindow::CollectReport() const {

@@ -1,6 +1,8 @@
 #include "ui/models/report_source.h"
 
+#include <QFile>
 #include <filesystem>
+#include <memory>
 
 namespace hull::ui {
 
@@ -32,6 +34,21 @@ std::optional<ReportSource> CollectReportSource(const Session& session, const Pa
     r.results_path = std::filesystem::path(mosaic->dir).parent_path().string();
   }
   return r;
+}
+
+report::ReportInputs ReportInputsOf(const ReportSource& s) {
+  report::ReportInputs in;
+  in.bundle = s.bundle;
+  in.cad = s.mesh;
+  in.pipeline = std::make_shared<const PipelineResult>(s.pipeline);
+  in.mapping = s.mapping;
+  in.comparison = s.comparison;
+  in.mosaic = s.mosaic;
+  in.mosaic_path = s.mosaic_path;
+  in.bundle_path = QFile::encodeName(s.bundle_path).toStdString();
+  in.mesh_path = QFile::encodeName(s.mesh_path).toStdString();
+  in.results_path = s.results_path;
+  return in;
 }
 
 }  // namespace hull::ui

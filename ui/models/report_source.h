@@ -15,6 +15,7 @@
 #include "mapping/mapping_result.h"
 #include "pipeline/pipeline.h"
 #include "results/compare_files.h"
+#include "ui/report/report_inputs.h"
 #include "ui/session/parameters.h"
 #include "ui/session/session.h"
 
@@ -41,6 +42,9 @@ struct ReportSource {
   std::string mosaic_path;
   std::string results_path;
 };
+
+// The report library's inputs (ui/report/report_inputs.h) of a snapshot.
+report::ReportInputs ReportInputsOf(const ReportSource& source);
 
 // nullopt until the session holds an alignment and an adjustment.
 std::optional<ReportSource> CollectReportSource(const Session& session, const ParameterValues& parameters,
