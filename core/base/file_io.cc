@@ -36,10 +36,17 @@ std::size_t MaxDecompressedSize(std::size_t compressed_bytes) {
   return std::max<std::size_t>(kGzipFloorBytes, compressed_bytes * kMaxGzipRatio);
 }
 
-std::string ReadFileToString(const std::string& path) {
+std::string ReadFileToString(const std::string& path, std::uint64_t max_bytes, const std::string& limit_reason) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw InputError({path, 0, 0, ""}, std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file");
+  }
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > max_bytes) {
+    char text[160];
+    std::snprintf(text, sizeof text, "refused: the file is %.1f MiB, more than the %.1f MiB ",
+                  static_cast<double>(size) / (1 << 20), static_cast<double>(max_bytes) / (1 << 20));
+    throw InputError({path, 0, 0, ""},
+                     text + (limit_reason.empty() ? "HullInspect reads from one file" : limit_reason));
   }
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InputError({path, 0, 0, ""}, std::string("cannot open: ") + std::strerror(errno));
@@ -59,7 +66,7 @@ std::string ReadFileToString(const std::string& path) {
     }
     return raw;
   }
-  const std::size_t cap = MaxDecompressedSize(raw.size());
+  const std::size_t cap = std::min<std::uint64_t>(MaxDecompressedSize(raw.size()), max_bytes);
   z_stream zs{};
   if (inflateInit2(&zs, 15 + 32) != Z_OK) throw InputError({path, 0, 0, ""}, "cannot initialise zlib");
   std::string out;

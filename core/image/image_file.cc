@@ -41,10 +41,19 @@ void CheckImageRequirements(const ImageInfo& info, const std::string& name, cons
 
 namespace {
 
-std::string ReadBytes(const std::string& path) {
+// The file, refused from its size alone when it is larger than an image of
+// the required size can be (every pixel 16-bit RGBA, uncompressed, and
+// 16 MiB of metadata): a huge or sparse file named as an image costs no
+// memory.
+std::string ReadBytes(const std::string& path, const ImageRequirements& required) {
   std::error_code ec;
   if (std::filesystem::is_regular_file(path, ec) && std::filesystem::file_size(path, ec) == 0 && !ec) {
     Fail(path, "empty file; expected a PNG or JPEG image");
+  }
+  if (required.width > 0 && required.height > 0) {
+    const std::uint64_t cap = std::uint64_t(required.width) * std::uint64_t(required.height) * 8 + (16u << 20);
+    return ReadFileToString(path, std::min(cap, kMaxFileBytes),
+                            "an image of " + SizeText(required.width, required.height) + " pixels can hold");
   }
   return ReadFileToString(path);  // InputError naming the file when unreadable
 }
@@ -89,11 +98,11 @@ cv::Mat DecodeImageBytes(std::string_view bytes, const std::string& name, const 
 }
 
 ImageInfo InspectImageFile(const std::string& path, const ImageRequirements& required) {
-  return InspectImageBytes(ReadBytes(path), path, required);
+  return InspectImageBytes(ReadBytes(path, required), path, required);
 }
 
 cv::Mat ReadImageFile(const std::string& path, const ImageRequirements& required, ImageInfo* info) {
-  return DecodeImageBytes(ReadBytes(path), path, required, info);
+  return DecodeImageBytes(ReadBytes(path, required), path, required, info);
 }
 
 std::string EncodeImage(const cv::Mat& image, const std::string& extension, const ImageWriteOptions& options) {

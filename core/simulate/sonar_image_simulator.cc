@@ -1,4 +1,5 @@
 #include "simulate/sonar_image_simulator.h"
+#include "survey/survey_plausibility.h"
 
 #include <filesystem>
 
@@ -12,6 +13,10 @@ bool SonarImageSimulationOptions::Check(std::string* why) const {
   if (!sequence.Check(why) || !scene.Check(why) || !render.Check(why)) return false;
   if (format.range_bins < 8 || format.range_bins > 8192 || format.beams < 8 || format.beams > 4096) {
     if (why) *why = "format: range_bins must be in 8..8192 and beams in 8..4096";
+    return false;
+  }
+  if (std::int64_t{format.range_bins} * format.beams > plausible::kMaxSonarImagePixels) {
+    if (why) *why = "format: range_bins x beams must be at most 8388608 (what a sequence may hold)";
     return false;
   }
   return true;

@@ -23,6 +23,7 @@
 #include "base/file_io.h"
 #include "base/json.h"
 #include "survey/sonar_image.h"
+#include "survey/survey_plausibility.h"
 
 namespace hull {
 namespace {
@@ -89,13 +90,15 @@ bool Guard(ProblemSink& sink, Fn&& fn) {
 }
 
 // Reads a whole file; a missing required file is a problem naming it.
-std::optional<std::string> ReadRequired(ProblemSink& sink, const std::string& path) {
+// max_bytes: what the file's rows can hold (kMaxFileBytes: no bound of its own).
+std::optional<std::string> ReadRequired(ProblemSink& sink, const std::string& path,
+                                        std::uint64_t max_bytes = kMaxFileBytes, const std::string& reason = "") {
   if (!fs::exists(path)) {
     sink.Report({path, 0, 0, ""}, "the file is missing; the acoustic sequence requires it");
     return std::nullopt;
   }
   std::optional<std::string> text;
-  Guard(sink, [&] { text = ReadFileToString(path); });
+  Guard(sink, [&] { text = ReadFileToString(path, max_bytes, reason); });
   return text;
 }
 
@@ -163,6 +166,17 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
       };
       count("range_bins", seq.image->range_bins);
       count("beams", seq.image->beams);
+      const std::int64_t pixels = std::int64_t{seq.image->range_bins} * seq.image->beams;
+      if (pixels > plausible::kMaxSonarImagePixels) {
+        Guard(sink, [&] {
+          im.Fail(im.Required("beams"), "beams",
+                  std::to_string(seq.image->range_bins) + " range bins x " + std::to_string(seq.image->beams) +
+                      " beams is " + std::to_string(pixels) + " samples a frame; expected at most " +
+                      std::to_string(plausible::kMaxSonarImagePixels) +
+                      " (imaging sonars give a few thousand "
+                      "samples on up to 1,024 beams)");
+        });
+      }
       Guard(sink, [&] { seq.image->gain_db = im.NumberOr("gain_db", 0.0); });
     });
   } else if (r.Has("image")) {
@@ -293,7 +307,9 @@ void CheckContiguous(ProblemSink& sink, const std::string& file, std::vector<Ste
 // Returns false when the file could not be read at all (the step count is then unknown).
 bool ReadControls(ProblemSink& sink, const std::string& dir, AcousticSequence& seq) {
   const std::string path = Join(dir, "controls.csv");
-  const std::optional<std::string> text = ReadRequired(sink, path);
+  // One row per step, seven numbers: 256 MiB hold over a million steps.
+  const std::optional<std::string> text =
+      ReadRequired(sink, path, std::uint64_t{256} << 20, "a control row per step can need (over a million steps)");
   if (!text) return false;
   std::optional<CsvReader> csv;
   if (!Guard(sink, [&] { csv.emplace(*text, path); })) return false;

@@ -126,6 +126,12 @@ SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
     cam.Fail(cam.Required("height"), "height",
              "expected at most " + std::to_string(plausible::kMaxImageSide) + " pixels");
   }
+  if (w * h > plausible::kMaxImagePixels) {
+    cam.Fail(cam.Required("width"), "width",
+             std::to_string(w) + " x " + std::to_string(h) + " pixels is " + std::to_string(w * h / 1000000) +
+                 " megapixels; expected at most " + std::to_string(plausible::kMaxImagePixels / 1000000) +
+                 " (no survey camera has more)");
+  }
   m.camera.width = static_cast<int>(w);
   m.camera.height = static_cast<int>(h);
   m.camera.top = ReadIntrinsics(cam.Object("top"), m.camera.width, m.camera.height);

@@ -26,11 +26,15 @@ class CsvReader;
 namespace plausible {
 
 // survey.json
-constexpr std::int64_t kMaxImageSide = 100000;  // px: no camera has a side of 100,000 pixels
-constexpr double kMinFocalPerImage = 0.04;      // focal length / larger image side: a 175 deg fisheye
-constexpr double kMaxFocalPerImage = 100;       // ... a 0.6 deg telephoto
-constexpr double kMaxLeverArm = 50;             // m: sensor offsets on the vehicle
-constexpr double kMaxFixedAngle = 2 * M_PI;     // rad: a fixed rotation needs at most one turn
+constexpr std::int64_t kMaxImageSide = 100000;       // px: no camera has a side of 100,000 pixels
+constexpr std::int64_t kMaxImagePixels = 100000000;  // px: nor 100 megapixels (survey cameras have up to ~25)
+// Acoustic images: range bins x beams of one frame (imaging sonars give up
+// to a few thousand samples on up to 1,024 beams).
+constexpr std::int64_t kMaxSonarImagePixels = std::int64_t{1} << 23;
+constexpr double kMinFocalPerImage = 0.04;   // focal length / larger image side: a 175 deg fisheye
+constexpr double kMaxFocalPerImage = 100;    // ... a 0.6 deg telephoto
+constexpr double kMaxLeverArm = 50;          // m: sensor offsets on the vehicle
+constexpr double kMaxFixedAngle = 2 * M_PI;  // rad: a fixed rotation needs at most one turn
 // Positions: no survey coordinate beyond 1e7 m (UTM northings reach 1e7);
 // PCL and Embree work in float, and squared distances of 1e30 overflow it.
 constexpr double kMaxCoordinate = 1e7;

@@ -1,5 +1,6 @@
 #include "vision/feature_detection.h"
 
+#include <algorithm>
 #include <opencv2/features2d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
@@ -32,7 +33,16 @@ cv::Mat NormaliseImage(const cv::Mat& image, const DetectionOptions& o) {
 
 ImageFeatures DetectFeatures(const cv::Mat& image, const DetectionOptions& o) {
   o.Check();
-  const cv::Mat grey = NormaliseImage(image, o);
+  cv::Mat grey = NormaliseImage(image, o);
+  // Above max_image_size: detected on the image shrunk by `scale` (area
+  // averaging), the keypoints mapped back to full-resolution pixels.
+  double scale = 1;
+  if (const int side = std::max(grey.cols, grey.rows); o.max_image_size > 0 && side > o.max_image_size) {
+    scale = static_cast<double>(o.max_image_size) / side;
+    cv::Mat small;
+    cv::resize(grey, small, cv::Size(), scale, scale, cv::INTER_AREA);
+    grey = small;
+  }
   cv::Ptr<cv::SIFT> sift = cv::SIFT::create(o.max_features, 3, o.contrast_threshold, o.edge_threshold, 1.6);
   std::vector<cv::KeyPoint> keys;
   ImageFeatures f;
@@ -41,8 +51,13 @@ ImageFeatures DetectFeatures(const cv::Mat& image, const DetectionOptions& o) {
   f.sizes.reserve(keys.size());
   // OpenCV's keypoints use the same origin (centre of the top-left pixel).
   for (const auto& k : keys) {
-    f.points.emplace_back(k.pt.x, k.pt.y);
-    f.sizes.push_back(k.size);
+    if (scale == 1) {
+      f.points.emplace_back(k.pt.x, k.pt.y);
+      f.sizes.push_back(k.size);
+    } else {
+      f.points.emplace_back((k.pt.x + 0.5) / scale - 0.5, (k.pt.y + 0.5) / scale - 0.5);
+      f.sizes.push_back(static_cast<float>(k.size / scale));
+    }
   }
   if (f.descriptors.empty()) f.descriptors = cv::Mat(0, 128, CV_32F);
   return f;

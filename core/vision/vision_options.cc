@@ -22,6 +22,8 @@ void DetectionOptions::Check() const {
   Require(Positive(edge_threshold), "edge_threshold", "must be positive");
   Require(Positive(clahe_clip), "clahe_clip", "must be positive");
   Require(clahe_tiles >= 1 && clahe_tiles <= 64, "clahe_tiles", "must be between 1 and 64");
+  Require(max_image_size == 0 || (max_image_size >= 64 && max_image_size <= 100000), "max_image_size",
+          "must be 0 (no limit) or between 64 and 100000 px");
 }
 
 void StereoOptions::Check() const {

@@ -13,6 +13,11 @@ struct DetectionOptions {
   bool clahe = true;                 // CLAHE before SIFT (uneven strobe lighting)
   double clahe_clip = 3.0;           // CLAHE clip limit (contrast amplification cap)
   int clahe_tiles = 8;               // CLAHE grid: tiles x tiles regions
+  // Larger images are detected at this longest side (px; 0: never), the
+  // keypoints scaled back: SIFT needs about 240 bytes a pixel (it doubles
+  // the image first), so a 16-megapixel image would take 4 GB. COLMAP's
+  // max_image_size, 3200; the tracks are refined at full resolution.
+  int max_image_size = 3200;
   void Check() const;
 };
 

@@ -69,7 +69,7 @@ TEST(Cli, MissingBundleIsNamed) {
   const hull::testing::ScratchDir tmp("cli_missing");
   const std::string missing = tmp / "no-such-bundle";
   const CliRun r = Cli({"validate", missing});
-  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find(missing), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("INVALID"), std::string::npos) << r.output;
 }
@@ -104,7 +104,7 @@ TEST(Cli, SimulateThenValidateAndNameACorruptField) {
                              line.substr(0, static_cast<std::size_t>(column - 1)) + "12.5x" +
                                  line.substr(static_cast<std::size_t>(column - 1) + value.size()));
   r = Cli({"validate", bundle});
-  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("nav.csv:7:" + std::to_string(column)), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(" + field + ")"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("INVALID (1 errors"), std::string::npos) << r.output;
@@ -247,7 +247,7 @@ TEST(CliRobust, AbsurdNavValuesFailValidateAndAdjustExitsThreeQuickly) {
     const std::string place =
         "nav.csv:3:" + std::to_string(hull::testing::CsvColumn(line, c.field)) + " (" + c.name + ")";
     CliRun r = Cli({"validate", bundle});
-    EXPECT_EQ(r.exit_code, 1) << c.value << "\n" << r.output;
+    EXPECT_EQ(r.exit_code, 3) << c.value << "\n" << r.output;
     EXPECT_NE(r.output.find(place), std::string::npos) << r.output;
     const auto t0 = std::chrono::steady_clock::now();
     r = Cli({"adjust", bundle, "--out", tmp / "out", "--quiet"});
@@ -273,7 +273,7 @@ TEST(CliRobust, AbsurdManifestDuplicatedOdometryAndBadMeshFailValidate) {
     json.replace(at, c.from.size(), c.to);
     hull::testing::WriteText(bundle + "/survey.json", json);
     CliRun r = Cli({"validate", bundle});
-    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_EQ(r.exit_code, 3) << r.output;
     EXPECT_NE(r.output.find("survey.json:"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.expect), std::string::npos) << r.output;
     r = Cli({"adjust", bundle, "--out", tmp / "out", "--quiet"});
@@ -285,7 +285,7 @@ TEST(CliRobust, AbsurdManifestDuplicatedOdometryAndBadMeshFailValidate) {
   const std::string odo = hull::testing::ReadText(dup + "/odometry.csv");
   hull::testing::WriteText(dup + "/odometry.csv", odo + hull::testing::LineOf(odo, 2) + "\n");
   CliRun r = Cli({"validate", dup});
-  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("duplicates line 2"), std::string::npos) << r.output;
   // A corrupted hull.ply: validate opens the model_hint mesh.
   const std::string mesh = tmp / "mesh";
@@ -294,7 +294,7 @@ TEST(CliRobust, AbsurdManifestDuplicatedOdometryAndBadMeshFailValidate) {
   ply.resize(ply.size() - 200);
   hull::testing::WriteText(mesh + "/hull.ply", ply);
   r = Cli({"validate", mesh});
-  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("(model_hint)"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("hull.ply"), std::string::npos) << r.output;
 }
@@ -385,7 +385,7 @@ TEST(CliRobust, MalformedHeadersAreBoundedAndEscaped) {
   for (int i = 0; i < 50000; ++i) name += (i % 2) ? '\x1b' : 'k';
   hull::testing::WriteText(bundle + "/dvl.csv", name + "," + name + "\n1,2\n");
   const CliRun r = Cli({"validate", bundle});
-  EXPECT_EQ(r.exit_code, 1) << r.output.substr(0, 2000);
+  EXPECT_EQ(r.exit_code, 3) << r.output.substr(0, 2000);
   EXPECT_LT(r.output.size(), 4000u) << r.output.substr(0, 2000);
   EXPECT_EQ(r.output.find('\x1b'), std::string::npos) << "an escape byte reached the terminal";
   EXPECT_NE(r.output.find("\\x1b"), std::string::npos) << r.output;

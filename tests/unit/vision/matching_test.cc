@@ -60,6 +60,38 @@ TEST(FeatureDetection, ClaheFindsFeaturesInTheDarkCorners) {
   EXPECT_THROW(DetectFeatures(cv::Mat(), with), std::invalid_argument);
 }
 
+// An image larger than max_image_size is detected at that size, the
+// keypoints in full-resolution pixels: the 640 x 512 scene rendered at twice
+// its size and detected with max_image_size 640 gives the features of the
+// original image at twice their coordinates (pixel centres mapped), where
+// SIFT on the full image would need four times the memory.
+TEST(FeatureDetection, LargeImagesAreDetectedAtMaxImageSize) {
+  const VisionScene s = MakeVisionScene(false, false, 1);
+  const cv::Mat image = s.Render(0);
+  cv::Mat large;
+  cv::resize(image, large, cv::Size(), 2, 2, cv::INTER_CUBIC);
+  DetectionOptions o;
+  o.max_image_size = image.cols;
+  const ImageFeatures small = DetectFeatures(image, o), big = DetectFeatures(large, o);
+  ASSERT_GT(small.size(), 200u);
+  ASSERT_GT(big.size(), 200u);
+  std::vector<double> distance;
+  for (const Eigen::Vector2d& p : big.points) {
+    ASSERT_TRUE(p.x() >= -0.5 && p.x() < large.cols - 0.5 && p.y() >= -0.5 && p.y() < large.rows - 0.5);
+    double best = 1e9;
+    for (const Eigen::Vector2d& q : small.points)
+      best = std::min(best, (p - (2 * (q.array() + 0.5) - 0.5).matrix()).norm());
+    distance.push_back(best);
+  }
+  std::nth_element(distance.begin(), distance.begin() + distance.size() / 2, distance.end());
+  EXPECT_LT(distance[distance.size() / 2], 1.0);  // px of the large image
+  // Below the limit nothing changes; 0 turns it off.
+  o.max_image_size = 0;
+  EXPECT_EQ(DetectFeatures(image, o).points, DetectFeatures(image, DetectionOptions{}).points);
+  o.max_image_size = 10;
+  EXPECT_THROW(o.Check(), OptionError);
+}
+
 TEST(StereoMatching, MatchesAreTrueAndTriangulateWithinCentimetres) {
   const VisionScene s = MakeVisionScene(true, false, 1);
   FrontEndOptions o;
