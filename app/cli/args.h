@@ -14,7 +14,7 @@ namespace hull::cli {
 // Exit codes of hullinspect-cli (documented in --help and the README).
 enum ExitCode : int {
   kExitOk = 0,
-  kExitFailure = 1,           // the work failed (e.g. a bundle with errors, a solver failure)
+  kExitFailure = 1,           // the work failed (e.g. a solver failure)
   kExitUsage = 2,             // bad command line
   kExitBadInput = 3,          // unreadable or malformed input file
   kExitInsufficientData = 4,  // well-formed input with too little evidence for a result (InsufficientData)

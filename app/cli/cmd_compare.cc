@@ -45,6 +45,7 @@ options:
   --max-misplacement M the most one top may lie apart between the two maps
                        before registration (default 5)
   --no-register        compare in M as the two results have it
+  --quiet              accepted, as by every command (compare prints no progress)
   --force              write into an --out folder that holds files HullInspect
                        did not write (they are kept; none is replaced)
 
@@ -62,13 +63,13 @@ void CheckMappingFolder(const std::string& results) {
 }  // namespace
 
 int RunCompare(const CommandArgs& argv) {
-  Args a(argv, {"help", "no-register", "force"});
+  Args a(argv, {"help", "no-register", "force", "quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
   a.AllowOnly({"out", "mesh", "mesh-scale", "peak-spacing", "peak-reach", "match-radius", "change", "k",
-               "max-misplacement", "no-register", "force"});
+               "max-misplacement", "no-register", "force", "quiet"});
   if (a.positionals().size() != 2) throw UsageError("expected two results folders, A and B");
   if (!a.Has("out")) throw UsageError("--out DIR is required");
   const OutputFolder out{a.Get("out"), a.Has("force")};

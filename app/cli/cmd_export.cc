@@ -22,17 +22,18 @@ extension: .ply (with the per-vertex deviation and fusions), .obj, .stl, or
 a format an exporter plugin writes, e.g. .glb / .gltf (glTF 2.0 with the
 deviation as vertex colour, or textured with the photomosaic when
 RESULTS/mosaic/ holds one). 'hullinspect-cli plugins' lists the exporters.
+--quiet is accepted, as by every command (export prints no progress).
 )";
 
 }  // namespace
 
 int RunExport(const CommandArgs& argv) {
-  Args a(argv, {});
+  Args a(argv, {"quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"out"});
+  a.AllowOnly({"out", "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one results folder");
   if (!a.Has("out")) throw UsageError("--out FILE is required");
   namespace fs = std::filesystem;

@@ -14,13 +14,15 @@
 namespace hull::cli {
 namespace {
 
-const char* kHelp = R"(usage: hullinspect-cli info PATH [--scale S]
+const char* kHelp = R"(usage: hullinspect-cli info PATH [--mesh-scale S]
 
 Summarises a survey bundle (folder with survey.json), an acoustic sequence
 (folder with sonar.json) or a mesh file (STL, PLY, OBJ, OFF, glTF, ... also
 .gz; STEP and IGES through the step-iges plugin, which also reports the
 file's unit, surface count and tessellation), or a survey a plugin converts.
---scale applies a scale to a mesh on load (e.g. 59.4 for the DTC model).
+--mesh-scale applies a scale to a mesh on load (e.g. 59.4 for the DTC model), as
+in every command that reads a mesh (--scale, its former name, is still accepted).
+--quiet is accepted, as by every command (info prints no progress).
 )";
 
 void BundleInfo(const SurveyBundle& b) {
@@ -118,12 +120,12 @@ void MeshInfo(const std::string& path, double scale) {
 }  // namespace
 
 int RunInfo(const CommandArgs& argv) {
-  Args a(argv, {});
+  Args a(argv, {"quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"scale"});
+  a.AllowOnly({"mesh-scale", "scale", "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one path");
   const std::string path = a.positionals()[0];
   namespace fs = std::filesystem;
@@ -136,7 +138,7 @@ int RunInfo(const CommandArgs& argv) {
     PrintImportReport(report);
     BundleInfo(bundle);
   } else {
-    MeshInfo(path, a.GetDouble("scale", 1.0));
+    MeshInfo(path, a.GetDouble("mesh-scale", a.GetDouble("scale", 1.0)));  // --scale: the old name
   }
   return kExitOk;
 }

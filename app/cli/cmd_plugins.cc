@@ -22,6 +22,7 @@ needs is missing, a second plugin of the same name). Folders:
   $XDG_DATA_HOME/hullinspect/plugins (~/.local/share/hullinspect/plugins)
   <program folder>/../lib/hullinspect/plugins (the installation's)
 Set an option on any command with --plugin-option <plugin>.<key>=<value>.
+--quiet is accepted, as by every command (plugins prints no progress).
 )";
 
 std::string Join(const std::vector<std::string>& items) {
@@ -40,12 +41,12 @@ void PrintItems(const char* kind, const std::vector<std::unique_ptr<T>>& items) 
 }  // namespace
 
 int RunPlugins(const CommandArgs& argv) {
-  Args a(argv, {});
+  Args a(argv, {"quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({});
+  a.AllowOnly({"quiet"});
   if (!a.positionals().empty()) throw UsageError("takes no arguments");
   const plugin::Registry& registry = plugin::Registry::Global();
   std::printf("plugin ABI version %d; folders, in search order:\n", plugin::kAbiVersion);

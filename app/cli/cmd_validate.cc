@@ -17,20 +17,23 @@ folder with sonar.json) against the survey contract, versions 1 and 2 (version
 2: every image in images/ is decoded and checked for its size and a bit depth
 and channel count shared by all; a missing image is a dropped frame, a
 warning). Prints a summary and the first problems; --all prints every problem.
-Each problem names the file, line, column and field.
+Each problem names the file, line, column and field. --quiet is accepted, as
+by every command (validate prints no progress).
 
-exit codes: 0 valid (warnings allowed), 1 errors found, 2 bad command line
+exit codes: 0 valid (warnings allowed), 2 bad command line, 3 errors found
+(malformed or implausible input: the status run, adjust and the other
+commands give for the same bundle)
 )";
 
 }  // namespace
 
 int RunValidate(const CommandArgs& argv) {
-  Args a(argv, {"all"});
+  Args a(argv, {"all", "quiet"});
   if (a.Has("help")) {
     std::fputs(kHelp, stdout);
     return kExitOk;
   }
-  a.AllowOnly({"all"});
+  a.AllowOnly({"all", "quiet"});
   if (a.positionals().size() != 1) throw UsageError("expected one bundle or sequence folder");
   const std::string path = a.positionals()[0];
   namespace fs = std::filesystem;
@@ -45,7 +48,7 @@ int RunValidate(const CommandArgs& argv) {
     std::printf("... %zu more (use --all to list every problem)\n", problems.size() - limit);
   }
   std::printf("%s: %s (%d errors, %d warnings)\n", path.c_str(), errors ? "INVALID" : "valid", errors, warnings);
-  return errors ? kExitFailure : kExitOk;
+  return errors ? kExitBadInput : kExitOk;
 }
 
 }  // namespace hull::cli
