@@ -110,6 +110,11 @@ RawMesh ReadStlAscii(std::string_view data, const std::string& file) {
 }  // namespace
 
 RawMesh ReadStl(std::string_view data, const std::string& file) {
+  // An ASCII STL saved by an editor that writes a UTF-8 byte order mark was
+  // read as binary ("announces 1919252000 triangles"): the mark is skipped
+  // when what follows it is ASCII STL.
+  constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+  if (data.substr(0, 3) == kByteOrderMark && !StlIsBinary(data.substr(3))) return ReadStlAscii(data.substr(3), file);
   return StlIsBinary(data) ? ReadStlBinary(data, file) : ReadStlAscii(data, file);
 }
 

@@ -34,6 +34,7 @@ MosaicInput MosaicInputFromAdjustment(const AdjustmentResult& a, const SurveyBun
   const SurveyBundle* b = &bundle;
   const std::vector<std::int64_t> ids = a.keyframes;
   in.read_image = [b, ids](std::size_t k, bool bottom) { return ReadSurveyImage(*b, ids[k], bottom); };
+  in.image_name = [b, ids](std::size_t k, bool bottom) { return b->ImagePath(ids[k], bottom); };
   return in;
 }
 

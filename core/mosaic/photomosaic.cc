@@ -249,11 +249,31 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
   // images are read in parallel (TBB), checked in view order, then worked on
   // in parallel; decoded images are kept for the second pass (gains, then
   // texturing) within the budget.
-  int channels = 0;
-  auto check_channels = [&](const cv::Mat& img) {
-    if (channels == 0) channels = img.channels();
-    if (img.channels() != channels || (channels != 1 && channels != 3)) {
-      throw std::runtime_error("the images mix channel counts (or have neither 1 nor 3 channels)");
+  // Every image as the first one: its size, and 1 or 3 channels. A
+  // mismatch names both files.
+  int channels = 0, first_view = -1;
+  const auto name_of = [&](int vi) {
+    const auto v = static_cast<std::size_t>(vi);
+    const std::string name = in.image_name ? in.image_name(view_keyframe[v], cameras[v].bottom()) : "";
+    return name.empty() ? "the " + std::string(cameras[v].bottom() ? "bottom" : "top") + " image of keyframe " +
+                              std::to_string(R.views[v].keyframe)
+                        : name;
+  };
+  auto check_image = [&](const cv::Mat& img, int vi) {
+    if (img.empty() || img.cols != W || img.rows != H) {
+      throw InputError({name_of(vi), 0, 0, ""}, "the image is " + std::to_string(img.cols) + "x" +
+                                                    std::to_string(img.rows) + "; the camera is " + std::to_string(W) +
+                                                    "x" + std::to_string(H));
+    }
+    if (channels == 0) channels = img.channels(), first_view = vi;
+    if (img.channels() != 1 && img.channels() != 3) {
+      throw InputError({name_of(vi), 0, 0, ""},
+                       std::to_string(img.channels()) + " channels; the photomosaic takes grey or colour (1 or 3)");
+    }
+    if (img.channels() != channels) {
+      throw InputError({name_of(vi), 0, 0, ""}, std::to_string(img.channels()) + " channels, where " +
+                                                    name_of(first_view) + " has " + std::to_string(channels) +
+                                                    ": the images mix channel counts");
     }
   };
   std::vector<cv::Mat> cache(static_cast<std::size_t>(nviews));
@@ -288,12 +308,7 @@ MosaicResult BuildMosaic(const MosaicInput& in, const MosaicOptions& options, Pr
         const auto i = static_cast<std::size_t>(vi - v0);
         if (failed[i]) std::rethrow_exception(failed[i]);
         const cv::Mat& img = images[i];
-        if (img.empty() || img.cols != W || img.rows != H) {
-          throw std::runtime_error("image of keyframe " +
-                                   std::to_string(R.views[static_cast<std::size_t>(vi)].keyframe) + " is not " +
-                                   std::to_string(W) + "x" + std::to_string(H));
-        }
-        check_channels(img);
+        check_image(img, vi);
         const std::size_t bytes = img.total() * img.elemSize();
         if (cache[static_cast<std::size_t>(vi)].empty() && cached_bytes + bytes <= cache_budget) {
           cache[static_cast<std::size_t>(vi)] = img;

@@ -69,6 +69,9 @@ struct MosaicInput {
   // read in parallel).
   std::function<bool(std::size_t k, bool bottom)> has_image;
   std::function<cv::Mat(std::size_t k, bool bottom)> read_image;
+  // The file an image comes from, for messages (empty: "keyframe K's top
+  // image").
+  std::function<std::string(std::size_t k, bool bottom)> image_name;
 };
 
 struct MosaicView {

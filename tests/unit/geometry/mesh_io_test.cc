@@ -256,6 +256,10 @@ TEST_F(MeshIoTest, AsciiStl) {
   const TriangleMesh r = LoadMesh(Write("a.stl", text), o);
   EXPECT_EQ(r.faces.size(), 2u);
   EXPECT_EQ(r.vertices.size(), 4u);  // the shared diagonal welded
+  // Saved with a UTF-8 byte order mark: still ASCII (it was read as binary).
+  const TriangleMesh bom = LoadMesh(Write("bom.stl", "\xEF\xBB\xBF" + text), o);
+  EXPECT_EQ(bom.faces.size(), 2u);
+  EXPECT_EQ(bom.vertices, r.vertices);
   const std::string bad =
       "solid x\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertx 1 0 0\n   vertex 1 1 0\n"
       "  endloop\n endfacet\nendsolid x\n";

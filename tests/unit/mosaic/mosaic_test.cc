@@ -13,6 +13,7 @@
 //   albedo stays below the bound justified at the test, and the photometric
 //   normalisation is what makes it small (raw pixels are far off);
 // - the written folder: OBJ, MTL, atlas, PLY, JSON and CSV.
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -487,6 +488,36 @@ TEST(Mosaic, CancelledBeforeWorkThrowsCancelledAndReportsProgress) {
   EXPECT_EQ(last, 1.0);
   progress.RequestCancel();
   EXPECT_THROW(BuildMosaic(in, RawOptions(), progress), Cancelled);
+}
+
+// Images that do not match the camera or each other are named, both of
+// them, as bad input (it was "the images mix channel counts", naming none).
+TEST(Mosaic, MixedImagesNameTheirFiles) {
+  TriangleMesh plane;
+  AddPlane(plane, 4, 0.3, 0.0);
+  cv::Mat colour;
+  cv::cvtColor(SmoothImage(2), colour, cv::COLOR_GRAY2BGR);
+  MosaicInput in = PlaneInput({LookingDown(0, 0, 1), LookingDown(0.05, 0, 1)}, {SmoothImage(1), colour}, plane);
+  in.image_name = [](std::size_t k, bool) { return "images/" + std::to_string(k + 1) + "_top.png"; };
+  NullProgress progress;
+  try {
+    BuildMosaic(in, RawOptions(), progress);
+    FAIL() << "mixed channel counts accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().file, "images/2_top.png");
+    EXPECT_THAT(e.what(), ::testing::HasSubstr("3 channels, where images/1_top.png has 1"));
+  }
+  in = PlaneInput({LookingDown(0, 0, 1)}, {cv::Mat(kH / 2, kW, CV_8U, cv::Scalar(90))}, plane);
+  EXPECT_THROW(
+      {
+        try {
+          BuildMosaic(in, RawOptions(), progress);
+        } catch (const InputError& e) {
+          EXPECT_THAT(e.what(), ::testing::HasSubstr("the top image of keyframe 1"));
+          throw;
+        }
+      },
+      InputError);
 }
 
 TEST(Mosaic, ResultsFolderWithoutModelIsNamed) {
