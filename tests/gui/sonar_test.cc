@@ -3,14 +3,18 @@
 // feature points and the trajectory with its ellipsoids; playing steps
 // through the sequence and moves the error plots' marker; switching the
 // initialisation runs the filter again; File ▸ Open sonar sequence reads a
-// folder, and a broken one is reported naming the file.
+// folder, and a broken one is reported naming the file; a run saved with
+// File ▸ Export ▸ Sonar results reopens (File ▸ Open sonar results) as it
+// was, its controls set to how it ran, and runs again from there.
 #include <QAction>
+#include <QCheckBox>
 #include <QComboBox>
 #include <QDockWidget>
 #include <QSignalSpy>
 #include <QTemporaryDir>
 
 #include "gui_test_support.h"
+#include "simulate/sonar_image_simulator.h"
 #include "simulate/sonar_simulator.h"
 #include "ui/app/main_window.h"
 #include "ui/panels/sonar_panel.h"
@@ -110,6 +114,73 @@ class SonarTest : public QObject {
     QCOMPARE(errors.size(), 1);
     QVERIFY2(errors[0].contains(QStringLiteral("measurements.csv")), qPrintable(errors[0]));
     QCOMPARE(w.sonarPanel()->run(), good);  // the last good run stays
+  }
+
+  void savedResultsReopenAsTheyWere() {
+    QTemporaryDir dir;
+    const QString prism = dir.filePath(QStringLiteral("prism"));
+    hull::WriteSonarImageSimulation(hull::SimulateSonarImages(hull::SonarImagePreset("prism", 2)),
+                                    QFile::encodeName(prism).toStdString());
+    MainWindow w;
+    QStringList errors;
+    w.SetErrorSink([&](const QString& t, const QString& m) { errors << t + ": " + m; });
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    SonarPanel* panel = w.sonarPanel();
+    panel->initBox()->setCurrentIndex(panel->initBox()->findData(static_cast<int>(hull::SonarInit::kPaper)));
+    panel->smootherBox()->setChecked(true);
+    panel->OpenSequence(prism);
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+    const auto ran = panel->run();
+    QVERIFY(ran && ran->from_images && ran->smoother);
+    const QString saved = dir.filePath(QStringLiteral("saved"));
+    panel->SaveResults(saved);
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+    QVERIFY(QFile::exists(saved + QStringLiteral("/detections.csv")));
+
+    // Another window, controls at their defaults: the saved run as it was.
+    MainWindow w2;
+    w2.SetErrorSink([&](const QString& t, const QString& m) { errors << t + ": " + m; });
+    w2.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w2));
+    SonarPanel* p2 = w2.sonarPanel();
+    QSignalSpy started(w2.jobs(), &JobRunner::jobStarted);
+    p2->OpenResults(saved);
+    HI_WAIT_IDLE(w2.jobs(), 60000);
+    QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
+    QCOMPARE(started.count(), 1);  // read, not run again
+    const auto back = p2->run();
+    QVERIFY(back);
+    QCOMPARE(back->steps(), ran->steps());
+    QCOMPARE(back->result.final_features.size(), ran->result.final_features.size());
+    for (std::size_t i = 0; i < ran->result.final_features.size(); ++i) {
+      QVERIFY((back->result.final_features[i].position - ran->result.final_features[i].position).norm() < 1e-12);
+    }
+    QVERIFY(back->smoother && back->from_images);
+    QCOMPARE(back->frames.size(), ran->frames.size());
+    QCOMPARE(back->frames.back().detections.size(), ran->frames.back().detections.size());
+    QCOMPARE(back->frames.back().image.rows, ran->frames.back().image.rows);
+    QCOMPARE(p2->initBox()->currentData().toInt(), static_cast<int>(hull::SonarInit::kPaper));
+    QVERIFY(p2->smootherBox()->isChecked());
+    p2->SetStep(3);
+    QCOMPARE(p2->step(), 3);
+    QVERIFY(p2->grab().toImage().save(OutputDir() + QStringLiteral("/sonar_panel_reopened.png")));
+    // From there the EKF runs again with another option.
+    p2->smootherBox()->setChecked(false);
+    HI_WAIT_IDLE(w2.jobs(), 60000);
+    QVERIFY(p2->run() != back && !p2->run()->smoother);
+
+    // The sequence changed since: refused, naming it.
+    QFile controls(prism + QStringLiteral("/controls.csv"));
+    QVERIFY(controls.open(QIODevice::Append));
+    controls.write("\n");
+    controls.close();
+    p2->OpenResults(saved);
+    HI_WAIT_IDLE(w2.jobs(), 60000);
+    QCOMPARE(errors.size(), 1);
+    QVERIFY2(errors[0].contains(QStringLiteral("changed since these results were made")), qPrintable(errors[0]));
   }
 };
 

@@ -270,6 +270,11 @@ void MainWindow::CreateInspectionMenu() {
 void MainWindow::AddResultFileEntries(QMenu* file) {
   file->addAction(NewAction(QStringLiteral("openSonarSequence"), QStringLiteral("Open s&onar sequence…"), this,
                             [this] { AskOpenSonarSequence(); }));
+  file->addAction(NewAction(QStringLiteral("openSonarResults"), QStringLiteral("Open sonar res&ults…"), this, [this] {
+    const QString folder = QFileDialog::getExistingDirectory(
+        this, QStringLiteral("Open sonar results (a folder hullinspect-cli sonar wrote)"));
+    if (!folder.isEmpty()) sonar_->OpenResults(folder);
+  }));
   QAction* mosaic = NewAction(QStringLiteral("openMosaic"), QStringLiteral("Open p&hotomosaic…"), this, [this] {
     const QString folder = QFileDialog::getExistingDirectory(
         this, QStringLiteral("Open the photomosaic of a results folder (or its mosaic folder)"));
@@ -287,6 +292,13 @@ void MainWindow::AddResultExportEntries(QMenu* exports) {
                                [this] { AskExportResult(QStringLiteral("objects")); }));
   exports->addAction(NewAction(QStringLiteral("exportZones"), QStringLiteral("&Zones and ratings (CSV)…"), this,
                                [this] { AskExportResult(QStringLiteral("zones")); }));
+  exports->addAction(NewAction(QStringLiteral("exportSonarResults"), QStringLiteral("So&nar results…"), this, [this] {
+    const QString folder = QFileDialog::getExistingDirectory(this, QStringLiteral("Save the sonar results into"));
+    if (folder.isEmpty()) return;
+    const bool foreign = ClassifyOutputFolder(QFile::encodeName(folder).toStdString()) == OutputFolderState::kForeign;
+    if (foreign && !ConfirmForeignFolder(folder, QStringLiteral("the sonar results"))) return;
+    sonar_->SaveResults(folder, foreign);
+  }));
   exports->addSeparator();
   exports->addAction(NewAction(QStringLiteral("exportReport"), QStringLiteral("R&eport (PDF, HTML)…"), this,
                                [this] { AskExportReport(); }));

@@ -5,10 +5,12 @@
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QFile>
+#include <QFileInfo>
 #include <QGridLayout>
 #include <QHBoxLayout>
 #include <QLabel>
 #include <QPushButton>
+#include <QSignalBlocker>
 #include <QSlider>
 #include <QSplitter>
 #include <QStandardItemModel>
@@ -16,6 +18,8 @@
 #include <QVBoxLayout>
 #include <cmath>
 
+#include "base/error.h"
+#include "results/sonar_files.h"
 #include "ui/views/plot_widget.h"
 #include "ui/views/sonar_fan_view.h"
 #include "ui/views/sonar_view.h"
@@ -251,6 +255,36 @@ void SonarPanel::OpenSequence(const QString& directory) {
   const std::string name = QDir(directory).dirName().toStdString();
   StartFromLoader(QStringLiteral("Open the sonar sequence %1").arg(QDir(directory).dirName()),
                   [path, name] { return std::make_shared<const SonarJobInput>(ReadSonarJobInput(path, name)); });
+}
+
+void SonarPanel::OpenResults(const QString& directory) {
+  const std::string path = QFile::encodeName(directory).toStdString();
+  jobs_->Run<std::shared_ptr<const SonarRun>>(
+      kSonarJob, QStringLiteral("Open the sonar results %1").arg(QDir(directory).dirName()),
+      [path](Progress& progress) { return std::make_shared<const SonarRun>(ReadSonarRun(path, progress)); },
+      [this](std::shared_ptr<const SonarRun>& run) {
+        // The controls as the results were run, without running them again.
+        const QSignalBlocker b1(init_), b2(source_), b3(smoother_);
+        init_->setCurrentIndex(init_->findData(static_cast<int>(run->options.init)));
+        source_->setCurrentIndex(source_->findData(run->options.from_images));
+        smoother_->setChecked(run->options.smoother);
+        SetRun(run);
+      });
+}
+
+void SonarPanel::SaveResults(const QString& folder, bool force) {
+  const std::shared_ptr<const SonarRun> run = run_;
+  const OutputFolder out{QFile::encodeName(QDir::cleanPath(QFileInfo(folder).absoluteFilePath())).toStdString(), force};
+  jobs_->Start(QStringLiteral("sonar-save"), QStringLiteral("Save the sonar results"), [run, out](Progress& progress) {
+    if (!run || !run->pipeline) {
+      throw OptionError("sonar results",
+                        "only a run of a sequence read from a folder can be saved (the results name it)");
+    }
+    progress.Update(0, "writing the sonar results");
+    ResultsRun record = NewResultsRun("gui sonar");
+    record.AddSequence("sequence", run->pipeline->sequence);
+    SaveSonarResults(*run->pipeline, out, std::move(record));
+  });
 }
 
 void SonarPanel::OpenDemo(const QString& preset) {

@@ -10,7 +10,8 @@
 // and the sonar's position and orientation error against dead reckoning
 // (Mai et al., Figs. 7, 8 and 11). Switching the feature source, the
 // initialisation (the paper's elevation 0 or our elevation hypotheses) or
-// the smoother runs the job again.
+// the smoother runs the job again. Saved results (OpenResults) play the
+// same way, as they were written.
 #pragma once
 
 #include <QString>
@@ -46,6 +47,15 @@ class SonarPanel : public QWidget {
   void OpenSequence(const QString& directory);
   // Simulates one of the layouts ("prism", "tank", "above") with its images and runs it.
   void OpenDemo(const QString& preset);
+  // Reads a saved sonar results folder (hullinspect-cli sonar, or saved
+  // from here) with its sequence and plays it (a job); the controls show
+  // the options it was run with, and changing one runs the EKF again.
+  void OpenResults(const QString& directory);
+  // Writes the run on screen as a sonar results folder (a job), as
+  // `hullinspect-cli sonar` writes one: `folder` replaced as a whole, a
+  // folder of the user's files only with `force` (theirs kept). Refused,
+  // through the job's failure, for a run without a sequence folder.
+  void SaveResults(const QString& folder, bool force = false);
   // Runs a loaded input (e.g. a test's own simulation).
   void OpenInput(std::shared_ptr<const SonarJobInput> input);
 

@@ -5,7 +5,11 @@
 #include <map>
 #include <utility>
 
+#include "base/error.h"
 #include "geometry/mesh_io.h"
+#include "results/file_hash.h"
+#include "results/results_folder.h"
+#include "results/sonar_files.h"
 #include "simulate/sonar_image_simulator.h"
 #include "sonar/sonar_pipeline.h"
 #include "survey/sonar_image.h"
@@ -91,6 +95,7 @@ SonarRun RunSonarJob(std::shared_ptr<const SonarJobInput> shared, const SonarJob
     };
   }
   SonarPipelineResult result = RunSonarPipeline(seq, input.directory, o, progress, read);
+  if (!input.directory.empty()) run.pipeline = std::make_shared<const SonarPipelineResult>(result);
   run.from_images = result.from_images;
   run.result = std::move(result.run);
   if (result.images) {
@@ -108,6 +113,60 @@ SonarRun RunSonarJob(std::shared_ptr<const SonarJobInput> shared, const SonarJob
   run.smoother = std::move(result.smoother);
   run.sequence = input.sequence;
   run.input = std::move(shared);
+  run.options = options;
+  run.options.from_images = run.from_images;
+  Summarise(run);
+  return run;
+}
+
+SonarRun ReadSonarRun(const std::string& results_dir, Progress& progress) {
+  progress.Update(0, "reading the sonar results");
+  SonarPipelineResult saved = ReadSonarResults(results_dir);
+  auto pipeline = std::make_shared<const SonarPipelineResult>(saved);
+  const std::string summary = (std::filesystem::path(results_dir) / "summary.json").string();
+  if (saved.sequence.empty() || !std::filesystem::exists(std::filesystem::path(saved.sequence) / "sonar.json")) {
+    throw InputError({summary, 0, 0, "sequence"},
+                     "the acoustic sequence the results were made from is not at '" + saved.sequence +
+                         "' (the results are shown with it: its sensor, truth and images)");
+  }
+  if (const std::optional<ResultsManifest> m = ReadResultsManifest(results_dir)) {
+    const ResultsInput* seq = m->run.Input("sequence");
+    if (seq && !seq->hash.empty() && seq->hash != SequenceHash(saved.sequence)) {
+      throw InputError({summary, 0, 0, "sequence"},
+                       "the acoustic sequence " + saved.sequence + " changed since these results were made from it");
+    }
+  }
+  progress.Update(0.3, "reading the acoustic sequence");
+  auto input = std::make_shared<const SonarJobInput>(
+      ReadSonarJobInput(saved.sequence, std::filesystem::path(saved.sequence).filename().string()));
+  SonarRun run;
+  run.name = input->name;
+  run.scene = input->scene;
+  run.sequence = input->sequence;
+  run.from_images = saved.from_images;
+  run.options.init = saved.run.options.init;
+  run.options.from_images = saved.from_images;
+  run.options.smoother = saved.smoother.has_value();
+  if (saved.images) {
+    const SonarImageFormat format = *input->sequence->image;
+    run.frames.resize(saved.images->steps.size());
+    for (std::size_t k = 0; k < run.frames.size(); ++k) {
+      progress.ThrowIfCancelled();
+      progress.Update(0.4 + 0.6 * static_cast<double>(k) / static_cast<double>(run.frames.size()),
+                      "reading the acoustic images");
+      const SonarImageStep& s = saved.images->steps[k];
+      SonarFrame& f = run.frames[k];
+      f.image = ReadSonarImage(SonarImagePath(saved.sequence, static_cast<long long>(k)), format);
+      f.detections = s.detections;
+      f.feature = s.track.feature;
+      f.pairing = s.track.pairing;
+    }
+  }
+  run.result = std::move(saved.run);
+  run.smoother = std::move(saved.smoother);
+  run.input = std::move(input);
+  run.results_dir = std::filesystem::absolute(results_dir).lexically_normal().string();
+  run.pipeline = std::move(pipeline);
   Summarise(run);
   return run;
 }

@@ -17,6 +17,7 @@
 
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
+#include "sonar/sonar_pipeline_result.h"
 #include "sonar/sonar_runner.h"
 #include "sonar/sonar_smoother_run.h"
 #include "sonar/sonar_tracker.h"
@@ -43,6 +44,14 @@ struct SonarJobInput {
   std::shared_ptr<const TriangleMesh> scene;
 };
 
+struct SonarJobOptions {
+  SonarInit init = SonarInit::kHypotheses;
+  // Features from the images (version 2) instead of measurements.csv;
+  // ignored (false) when the sequence has no images.
+  bool from_images = true;
+  bool smoother = false;  // the batch smoother after the EKF
+};
+
 struct SonarRun {
   std::string name;  // the sequence's name, or the demo preset
   std::shared_ptr<const AcousticSequence> sequence;
@@ -59,18 +68,17 @@ struct SonarRun {
   std::optional<SonarSmootherRun> smoother;
   // The scene the sequence was made from (truth/scene.ply), when present.
   std::shared_ptr<const TriangleMesh> scene;
-  // What it was run from (to run it again with other options).
+  // What it was run from (to run it again with other options), and how.
   std::shared_ptr<const SonarJobInput> input;
+  SonarJobOptions options;
+  // The saved results it was read from ("" : computed in this session).
+  std::string results_dir;
+  // The whole result as the results layer writes it (Save sonar results):
+  // set by RunSonarJob and ReadSonarRun; for a sequence read from a folder
+  // (a simulation in memory has no folder for the results to name).
+  std::shared_ptr<const SonarPipelineResult> pipeline;
 
   int steps() const { return static_cast<int>(result.steps.size()); }
-};
-
-struct SonarJobOptions {
-  SonarInit init = SonarInit::kHypotheses;
-  // Features from the images (version 2) instead of measurements.csv;
-  // ignored (false) when the sequence has no images.
-  bool from_images = true;
-  bool smoother = false;  // the batch smoother after the EKF
 };
 
 // Reads an acoustic sequence folder for a job: the sequence and, when
@@ -83,6 +91,14 @@ SonarJobInput SimulateSonarJobInput(const std::string& preset, std::uint64_t see
 // images or the given measurements, then the smoother when asked. Throws
 // what the reading and the runs throw (InputError naming a bad image).
 SonarRun RunSonarJob(std::shared_ptr<const SonarJobInput> input, const SonarJobOptions& options, Progress& progress);
+// A sonar results folder saved by `hullinspect-cli sonar` or the GUI
+// (results/sonar_files.h) as the dock plays it, with the sequence it was
+// made from (summary.json names it): truth, scene and, for features from the
+// images, every frame's image and detections (the EKF's predictions are not
+// saved: the frames have none). Throws InputError naming the file: the
+// results unreadable or mixed, the sequence missing, or changed since the
+// results were written (its fingerprint in the results' manifest).
+SonarRun ReadSonarRun(const std::string& results_dir, Progress& progress);
 // The given measurements only (no images, no smoother).
 SonarRun RunSonarJob(std::shared_ptr<const AcousticSequence> sequence, std::string name, SonarInit init,
                      Progress& progress);
