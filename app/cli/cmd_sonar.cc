@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/console_progress.h"
 #include "results/sonar_files.h"
+#include "sonar/sonar_consistency.h"
 #include "sonar/sonar_pipeline.h"
 #include "survey/acoustic_sequence.h"
 
@@ -104,6 +105,7 @@ void PrintSonarSummary(const SonarPipelineResult& result, const std::string& dir
   std::printf("%s: %zu steps, %zu features (%d in the state), %s initialisation, %.1f steps/s\n", dir.c_str(),
               r.steps.size(), r.final_features.size(), in_state, SonarInitName(options.ekf.init),
               r.filter_seconds > 0 ? r.steps.size() / r.filter_seconds : 0.0);
+  std::printf("consistency: %s\n", CheckSonarConsistency(r).Verdict().c_str());
   if (r.has_truth) {
     const SonarStepErrors& e = *last.errors;
     if (e.features > 0) {

@@ -9,6 +9,7 @@
 #include "base/file_io.h"
 #include "base/json.h"
 #include "results/sonar_columns.h"
+#include "sonar/sonar_consistency.h"
 
 namespace hull {
 namespace fs = std::filesystem;
@@ -318,6 +319,21 @@ Json SmootherSummaryJson(const SonarSmootherRun& run, const SonarSmootherOptions
   return s;
 }
 
+// The filter's NIS against chi-square (sonar/sonar_consistency.h).
+Json ConsistencyJson(const SonarConsistency& c) {
+  Json j = Json::Object();
+  j.Set("nis", Finite(c.nis));
+  j.Set("dof", Json(c.dof));
+  j.Set("interval", Json::ArrayOf(std::vector<double>{c.low, c.high}));
+  j.Set("window", Json(c.window));
+  j.Set("windows", Json(c.windows));
+  j.Set("windows_high", Json(c.windows_high));
+  j.Set("inconsistent", Json(c.inconsistent));
+  j.Set("conservative", Json(c.conservative));
+  j.Set("verdict", Json(c.Verdict()));
+  return j;
+}
+
 Json SummaryJson(const SonarPipelineResult& p) {
   const SonarRunResult& r = p.run;
   Json sum = Json::Object();
@@ -340,6 +356,7 @@ Json SummaryJson(const SonarPipelineResult& p) {
   for (int i = 0; i < 6; ++i) sigma[i] = std::sqrt(last.estimate.pose_covariance(i, i));
   sum.Set("final_pose_sigma", ArrayOf(sigma));
   sum.Set("final_dead_reckoning", ArrayOf(last.dead_reckoning));
+  sum.Set("consistency", ConsistencyJson(CheckSonarConsistency(r)));
   if (r.has_truth) sum.Set("truth", TruthJson(r));
   if (p.images) sum.Set("images", ImageSummaryJson(*p.images, p.image_options));
   if (p.smoother) sum.Set("smoother", SmootherSummaryJson(*p.smoother, p.smoother_options));

@@ -121,9 +121,8 @@ class ImageSource final : public SonarStepSource {
 void Evaluate(const AcousticSequence& seq, SonarImageRunResult& r) {
   SonarImageEvaluation& e = r.evaluation;
   e.min_detection_rate = 1;
-  int detections = 0, clutter = 0;
+  int clutter = 0;
   for (const SonarImageStep& s : r.steps) {
-    detections += static_cast<int>(s.detections.size());
     for (std::size_t j = 0; j < s.detections.size(); ++j) {
       clutter += s.label[j] < 0;
       if (s.track.pairing[j] == SonarPairing::kNew) continue;

@@ -20,6 +20,7 @@
 
 #include "base/error.h"
 #include "results/sonar_files.h"
+#include "sonar/sonar_consistency.h"
 #include "ui/views/plot_widget.h"
 #include "ui/views/sonar_fan_view.h"
 #include "ui/views/sonar_view.h"
@@ -307,6 +308,9 @@ void SonarPanel::Rerun() {
 void SonarPanel::SetRun(std::shared_ptr<const SonarRun> run) {
   Pause();
   run_ = std::move(run);
+  const SonarConsistency consistency = run_ ? CheckSonarConsistency(run_->result) : SonarConsistency{};
+  consistency_ = QString::fromStdString(consistency.Verdict());
+  inconsistent_ = consistency.inconsistent;
   step_ = run_ && run_->steps() > 0 ? run_->steps() - 1 : 0;
   view_->SetRun(run_);
   view_->SetStep(step_);
@@ -416,6 +420,15 @@ void SonarPanel::UpdateControls() {
     text += QStringLiteral(" Smoother: final mean feature error %1 m.")
                 .arg(run_->smoother->errors->mean_feature_error, 0, 'f', 4);
   }
+  // The run's own consistency, first and in red when its sigma cannot be trusted.
+  if (inconsistent_) {
+    text = QStringLiteral(
+               "<span style='color:#d62728'><b>The estimate is INCONSISTENT</b></span> (its σ "
+               "understate the errors; hover for why). ") +
+           text.toHtmlEscaped();
+  }
+  status_->setToolTip(QStringLiteral("Consistency (the EKF's innovations against χ², no truth needed): ") +
+                      consistency_);
   status_->setText(text);
 }
 

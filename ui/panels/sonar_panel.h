@@ -113,6 +113,8 @@ class SonarPanel : public QWidget {
   PlotWidget* position_plot_ = nullptr;
   PlotWidget* orientation_plot_ = nullptr;
   QLabel* status_ = nullptr;
+  QString consistency_;  // the run's CheckSonarConsistency verdict
+  bool inconsistent_ = false;
   QTimer* timer_ = nullptr;
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sonar/sonar_association.h"
+#include "sonar/sonar_consistency.h"
 #include "ui/report/report_blocks.h"
 
 namespace hull::report {
@@ -18,19 +19,6 @@ double Spread(const Eigen::Matrix3d& c) { return std::sqrt(std::max(0.0, c.trace
 
 int InState(const std::vector<SonarFeatureEstimate>& f) {
   return static_cast<int>(std::count_if(f.begin(), f.end(), [](const SonarFeatureEstimate& e) { return e.in_state; }));
-}
-
-// The filter's normalised innovations squared summed over the run (the
-// truth-free check: each step's NIS is chi-square with 2 per measurement used).
-ConsistencyCheck RunNis(const SonarRunResult& run) {
-  double nis = 0;
-  int dof = 0;
-  for (const SonarStepRecord& s : run.steps) {
-    if (s.estimate.nis_dof <= 0 || !std::isfinite(s.estimate.nis)) continue;
-    nis += s.estimate.nis;
-    dof += s.estimate.nis_dof;
-  }
-  return CheckConsistency(nis, dof);
 }
 
 std::string Verdict(const ConsistencyCheck& c, const std::string& what) {
@@ -75,7 +63,7 @@ Section SummarySection(const ReportInputs& in) {
     facts.push_back({"Smoother", Format("%d iterations, %s; %zu features", m.iterations,
                                         m.converged ? "converged" : "NOT converged", m.features.size())});
   }
-  facts.push_back({"Consistency (no truth needed)", Verdict(RunNis(run), "the filter's summed NIS")});
+  facts.push_back({"Consistency (no truth needed)", CheckSonarConsistency(run).Verdict()});
   facts.push_back({"Truth", run.has_truth ? "yes: errors and NEES in the evaluation section" : "none"});
   s.blocks.push_back(Facts(std::move(facts)));
   return s;
@@ -186,7 +174,9 @@ Section ConsistencySection(const ReportInputs& in) {
       "An estimate is only useful with an honest uncertainty. Without truth, the filter's normalised innovations "
       "(NIS) must follow their chi-square distribution; with truth, so must the normalised estimation errors (NEES) "
       "of the pose and features."));
-  std::vector<std::string> items = {Verdict(RunNis(r.run), "Filter, summed NIS over all updates")};
+  const SonarConsistency nis = CheckSonarConsistency(r.run);
+  std::vector<std::string> items = {"Filter, its innovations (NIS, over all updates and windows of " +
+                                    std::to_string(nis.window) + " steps): " + nis.Verdict() + "."};
   if (!r.run.steps.empty() && r.run.steps.back().errors) {
     const SonarStepErrors& e = *r.run.steps.back().errors;
     items.push_back(Verdict(CheckConsistency(e.joint_nees, e.joint_nees_dof), "Filter, joint NEES at the last step"));
@@ -197,7 +187,7 @@ Section ConsistencySection(const ReportInputs& in) {
   }
   s.blocks.push_back(List(std::move(items)));
   for (const std::string& line : s.blocks.back().items) {
-    if (line.find("INCONSISTENT") != std::string::npos) {
+    if (line.find("INCONSISTENT") != std::string::npos || line.find("must not be trusted") != std::string::npos) {
       s.blocks.push_back(Note("At least one check fails: treat the features' σ in this report as optimistic."));
       break;
     }
