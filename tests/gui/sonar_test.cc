@@ -5,19 +5,27 @@
 // initialisation runs the filter again; File ▸ Open sonar sequence reads a
 // folder, and a broken one is reported naming the file; a run saved with
 // File ▸ Export ▸ Sonar results reopens (File ▸ Open sonar results) as it
-// was, its controls set to how it ran, and runs again from there.
+// was, its controls set to how it ran, and runs again from there; the
+// parameter table's Sonar rows run the dock again, are saved in the project
+// and come back with undo.
 #include <QAction>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDockWidget>
+#include <QScrollArea>
 #include <QSignalSpy>
+#include <QSpinBox>
 #include <QTemporaryDir>
+#include <QUndoStack>
 
 #include "gui_test_support.h"
 #include "simulate/sonar_image_simulator.h"
 #include "simulate/sonar_simulator.h"
 #include "ui/app/main_window.h"
+#include "ui/panels/parameter_panel.h"
 #include "ui/panels/sonar_panel.h"
+#include "ui/session/inspection_parameters.h"
+#include "ui/session/project_file.h"
 #include "ui/views/plot_widget.h"
 #include "ui/views/sonar_fan_view.h"
 #include "ui/views/sonar_view.h"
@@ -114,6 +122,58 @@ class SonarTest : public QObject {
     QCOMPARE(errors.size(), 1);
     QVERIFY2(errors[0].contains(QStringLiteral("measurements.csv")), qPrintable(errors[0]));
     QCOMPARE(w.sonarPanel()->run(), good);  // the last good run stays
+  }
+
+  void sonarRowsOfTheParameterTableRunTheDockAndAreSaved() {
+    MainWindow w;
+    QStringList errors;
+    w.SetErrorSink([&](const QString& t, const QString& m) { errors << t + ": " + m; });
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.sonarPanel()->OpenDemo(QStringLiteral("prism"));
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    const auto first = w.sonarPanel()->run();
+    QVERIFY(first);
+    QCOMPARE(first->result.options.hypotheses, 9);
+    auto* hypotheses = qobject_cast<QSpinBox*>(w.parameterPanel()->editor(QStringLiteral("sonar_hypotheses")));
+    QVERIFY(hypotheses);
+    const int undo_before = w.parameterPanel()->undoStack()->count();
+    hypotheses->setValue(15);
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QVERIFY(w.sonarPanel()->run() != first);
+    QCOMPARE(w.sonarPanel()->run()->result.options.hypotheses, 15);
+    QCOMPARE(w.parameterPanel()->undoStack()->count(), undo_before + 1);
+    QTemporaryDir tmp;
+    const QString project = tmp.filePath(QStringLiteral("sonar.hiproj"));
+    QVERIFY(w.SaveProject(project));
+    const ProjectData saved = ReadProject(project, DefaultParameterTable(), CheckDefaultParameters);
+    QCOMPARE(saved.parameters.value(QStringLiteral("sonar_hypotheses")).toInt(), 15);
+    w.parameterPanel()->undoStack()->undo();
+    HI_WAIT_IDLE(w.jobs(), 60000);
+    QCOMPARE(hypotheses->value(), 9);
+    QCOMPARE(w.sonarPanel()->run()->result.options.hypotheses, 9);
+    // A value its options refuse is named on its row (collapse 1 is out of (0.5, 1)).
+    const std::vector<ParameterError> bad = [&] {
+      ParameterValues v = w.parameterPanel()->values();
+      v[QStringLiteral("sonar_collapse")] = 1.0;
+      return CheckDefaultParameters(v);
+    }();
+    QVERIFY(!bad.empty());
+    QCOMPARE(bad.front().key, QStringLiteral("sonar_collapse"));
+    {  // The group as the user sees it (looked at).
+      ParameterPanel* panel = w.parameterPanel();
+      auto* dock = qobject_cast<QDockWidget*>(panel->parentWidget());
+      QVERIFY(dock);
+      dock->setFloating(true);
+      dock->resize(420, 700);
+      dock->show();
+      if (auto* scroll = panel->findChild<QScrollArea*>()) {
+        scroll->ensureWidgetVisible(panel->editor(QStringLiteral("sonar_smoother_covariances")));
+      }
+      hull::ui::testing::Settle(dock);
+      QVERIFY(panel->grab().save(OutputDir() + QStringLiteral("/sonar_parameters.png")));
+    }
+    QVERIFY2(errors.isEmpty(), qPrintable(errors.join('\n')));
   }
 
   void savedResultsReopenAsTheyWere() {

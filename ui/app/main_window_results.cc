@@ -33,6 +33,7 @@
 #include "ui/panels/survey_compare_panel.h"
 #include "ui/session/inspection_parameters.h"
 #include "ui/session/session.h"
+#include "ui/session/sonar_parameters.h"
 #include "ui/views/cross_section_view.h"
 #include "ui/views/keyframe_view.h"
 #include "ui/views/scene_view.h"
@@ -219,6 +220,12 @@ void MainWindow::ConnectResults() {
   connect(mosaic_, &MosaicController::message, this,
           [this](const QString& text) { statusBar()->showMessage(text, 15000); });
   connect(mosaic_, &MosaicController::stateChanged, this, &MainWindow::UpdateResultActions);
+  // The parameter table's Sonar rows: the dock runs again when they change.
+  const auto sonar_tuning = [this](const ParameterValues& values) {
+    sonar_->SetTuning(SonarTuningFrom(values), SonarKey(values));
+  };
+  connect(parameters_, &ParameterPanel::parametersChanged, this, sonar_tuning);
+  sonar_tuning(parameters_->values());
   connect(report_export_, &ReportExportController::failed, this, &MainWindow::ReportError);
   connect(report_export_, &ReportExportController::message, this,
           [this](const QString& text) { statusBar()->showMessage(text, 15000); });

@@ -238,6 +238,7 @@ void SonarPanel::StartFromLoader(const QString& title, std::function<std::shared
   options.init = static_cast<SonarInit>(init_->currentData().toInt());
   options.from_images = source_->currentData().toBool();
   options.smoother = smoother_->isChecked();
+  options.tuning = tuning_;
   jobs_->Run<std::shared_ptr<const SonarRun>>(
       kSonarJob, title,
       [load = std::move(load), options](Progress& progress) {
@@ -271,6 +272,14 @@ void SonarPanel::OpenResults(const QString& directory) {
         smoother_->setChecked(run->options.smoother);
         SetRun(run);
       });
+}
+
+void SonarPanel::SetTuning(const SonarPipelineOptions& tuning, const QString& key) {
+  if (key == tuning_key_) return;
+  const bool first = tuning_key_.isEmpty();
+  tuning_ = tuning;
+  tuning_key_ = key;
+  if (!first) Rerun();  // the run on screen, with the new tuning
 }
 
 void SonarPanel::SaveResults(const QString& folder, bool force) {

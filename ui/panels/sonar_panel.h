@@ -56,6 +56,10 @@ class SonarPanel : public QWidget {
   // folder of the user's files only with `force` (theirs kept). Refused,
   // through the job's failure, for a run without a sequence folder.
   void SaveResults(const QString& folder, bool force = false);
+  // The chain's tuning (the parameter table's Sonar rows); `key` names the
+  // values: a new key runs the sequence on screen again.
+  void SetTuning(const SonarPipelineOptions& tuning, const QString& key);
+  const SonarPipelineOptions& tuning() const { return tuning_; }
   // Runs a loaded input (e.g. a test's own simulation).
   void OpenInput(std::shared_ptr<const SonarJobInput> input);
 
@@ -114,6 +118,8 @@ class SonarPanel : public QWidget {
   PlotWidget* orientation_plot_ = nullptr;
   QLabel* status_ = nullptr;
   QString consistency_;  // the run's CheckSonarConsistency verdict
+  SonarPipelineOptions tuning_;
+  QString tuning_key_;
   bool inconsistent_ = false;
   QTimer* timer_ = nullptr;
 };

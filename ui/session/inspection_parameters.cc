@@ -7,6 +7,7 @@
 
 #include "base/error.h"
 #include "mapping/mapping_options.h"
+#include "ui/session/sonar_parameters.h"
 
 namespace hull::ui {
 
@@ -19,48 +20,9 @@ const QString kSolver = QStringLiteral("Solver limits");
 const QString kMap = QStringLiteral("Mapping");
 const QString kFront = QStringLiteral("Visual front end");
 
-ParameterDescriptor Real(QString key, QString group, Stage stage, QString label, double min, double max, double def,
-                         int decimals, double step, QString unit, QString tooltip) {
-  ParameterDescriptor d;
-  d.key = std::move(key);
-  d.group = std::move(group);
-  d.stage = stage;
-  d.label = std::move(label);
-  d.type = ParameterDescriptor::Type::kReal;
-  d.minimum = min;
-  d.maximum = max;
-  d.default_value = def;
-  d.decimals = decimals;
-  d.step = step;
-  d.unit = std::move(unit);
-  d.tooltip = std::move(tooltip);
-  return d;
-}
-
-ParameterDescriptor Integer(QString key, QString group, Stage stage, QString label, int min, int max, int def,
-                            QString tooltip) {
-  ParameterDescriptor d =
-      Real(std::move(key), std::move(group), stage, std::move(label), min, max, def, 0, 1, {}, std::move(tooltip));
-  d.type = ParameterDescriptor::Type::kInteger;
-  return d;
-}
-
-ParameterDescriptor Choice(QString key, QString group, Stage stage, QString label, QStringList keys, QStringList labels,
-                           int def, QString tooltip) {
-  ParameterDescriptor d;
-  d.key = std::move(key);
-  d.group = std::move(group);
-  d.stage = stage;
-  d.label = std::move(label);
-  d.type = ParameterDescriptor::Type::kChoice;
-  d.choice_keys = std::move(keys);
-  d.choice_labels = std::move(labels);
-  d.minimum = 0;
-  d.maximum = d.choice_keys.size() - 1;
-  d.default_value = def;
-  d.tooltip = std::move(tooltip);
-  return d;
-}
+using table::Choice;
+using table::Integer;
+using table::Real;
 
 const SurfaceModel kModels[] = {SurfaceModel::kNaive, SurfaceModel::kAllOnSurface, SurfaceModel::kMaxMixture};
 
@@ -264,6 +226,7 @@ ParameterTable MakeTable() {
                                   "deviation from the adjustment (1.96: 95 % for a normal error). Changes the "
                                   "significance heatmap at once; nothing is re-run.")));
   AddMosaicFields(t);
+  AddSonarFields(t);
   return t;
 }
 
@@ -325,6 +288,7 @@ std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values
   } catch (const OptionError& e) {
     errors.push_back({QString::fromStdString(e.field()), QString::fromStdString(e.what())});
   }
+  for (ParameterError& e : CheckSonarParameters(values)) errors.push_back(std::move(e));
   try {
     MosaicOptionsFrom(values).Check();
   } catch (const OptionError& e) {

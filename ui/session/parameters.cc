@@ -85,4 +85,51 @@ std::vector<ParameterError> CheckAgainstTable(const ParameterTable& table, const
   return errors;
 }
 
+namespace table {
+
+ParameterDescriptor Real(QString key, QString group, ParameterDescriptor::Stage stage, QString label, double min,
+                         double max, double def, int decimals, double step, QString unit, QString tooltip) {
+  ParameterDescriptor d;
+  d.key = std::move(key);
+  d.group = std::move(group);
+  d.stage = stage;
+  d.label = std::move(label);
+  d.type = ParameterDescriptor::Type::kReal;
+  d.minimum = min;
+  d.maximum = max;
+  d.default_value = def;
+  d.decimals = decimals;
+  d.step = step;
+  d.unit = std::move(unit);
+  d.tooltip = std::move(tooltip);
+  return d;
+}
+
+ParameterDescriptor Integer(QString key, QString group, ParameterDescriptor::Stage stage, QString label, int min,
+                            int max, int def, QString tooltip) {
+  ParameterDescriptor d =
+      Real(std::move(key), std::move(group), stage, std::move(label), min, max, def, 0, 1, {}, std::move(tooltip));
+  d.type = ParameterDescriptor::Type::kInteger;
+  return d;
+}
+
+ParameterDescriptor Choice(QString key, QString group, ParameterDescriptor::Stage stage, QString label,
+                           QStringList keys, QStringList labels, int def, QString tooltip) {
+  ParameterDescriptor d;
+  d.key = std::move(key);
+  d.group = std::move(group);
+  d.stage = stage;
+  d.label = std::move(label);
+  d.type = ParameterDescriptor::Type::kChoice;
+  d.choice_keys = std::move(keys);
+  d.choice_labels = std::move(labels);
+  d.minimum = 0;
+  d.maximum = d.choice_keys.size() - 1;
+  d.default_value = def;
+  d.tooltip = std::move(tooltip);
+  return d;
+}
+
+}  // namespace table
+
 }  // namespace hull::ui

@@ -73,4 +73,15 @@ std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values
 // for kInteger); false when it cannot be.
 bool CoerceValue(const ParameterDescriptor& d, const QVariant& in, QVariant* out);
 
+// The table's rows, as the tables of inspection_parameters.h and
+// sonar_parameters.h build them.
+namespace table {
+ParameterDescriptor Real(QString key, QString group, ParameterDescriptor::Stage stage, QString label, double min,
+                         double max, double def, int decimals, double step, QString unit, QString tooltip);
+ParameterDescriptor Integer(QString key, QString group, ParameterDescriptor::Stage stage, QString label, int min,
+                            int max, int def, QString tooltip);
+ParameterDescriptor Choice(QString key, QString group, ParameterDescriptor::Stage stage, QString label,
+                           QStringList keys, QStringList labels, int def, QString tooltip);
+}  // namespace table
+
 }  // namespace hull::ui

@@ -73,7 +73,7 @@ SonarRun RunSonarJob(std::shared_ptr<const SonarJobInput> shared, const SonarJob
   run.name = input.name;
   run.scene = input.scene;
   const bool images_available = seq.image && (!input.directory.empty() || input.images);
-  SonarPipelineOptions o;
+  SonarPipelineOptions o = options.tuning;
   o.source = options.from_images && images_available ? SonarFeatureSource::kImages : SonarFeatureSource::kMeasurements;
   o.run.ekf.init = options.init;
   o.images.run.ekf.init = options.init;

@@ -17,6 +17,7 @@
 
 #include "base/progress.h"
 #include "geometry/triangle_mesh.h"
+#include "sonar/sonar_pipeline.h"
 #include "sonar/sonar_pipeline_result.h"
 #include "sonar/sonar_runner.h"
 #include "sonar/sonar_smoother_run.h"
@@ -50,6 +51,9 @@ struct SonarJobOptions {
   // ignored (false) when the sequence has no images.
   bool from_images = true;
   bool smoother = false;  // the batch smoother after the EKF
+  // The rest of the chain's options (the parameter table's "Sonar" rows,
+  // ui/session/sonar_parameters.h); source, init and smoother above win.
+  SonarPipelineOptions tuning;
 };
 
 struct SonarRun {
