@@ -7,6 +7,8 @@ set -euo pipefail
 PACKAGES=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config git clang-format
+  # CI's function budget measures functions with ctags (.ci/function-budget)
+  universal-ctags
   # the fuzzed readers (tests/fuzz): clang with libFuzzer and the sanitizer runtimes
   clang libclang-rt-dev
   # core libraries

@@ -120,16 +120,9 @@ void ForEachRow(ProblemSink& sink, CsvReader& csv, RowFn&& row) {
 // ---------------------------------------------------------------------------
 // sonar.json
 
-void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& seq) {
-  const std::string path = Join(dir, "sonar.json");
-  const std::optional<std::string> text = ReadRequired(sink, path);
-  if (!text) return;
-  Json doc;
-  if (!Guard(sink, [&] { doc = Json::Parse(*text, path); })) return;
-  // Each top-level rule in its own guard so the validator sees them all.
-  std::optional<JsonReader> root;
-  if (!Guard(sink, [&] { root.emplace(doc, path); })) return;
-  const JsonReader& r = *root;
+// format and version: false when the file is another format or version
+// (its other keys then mean nothing here); version 2 gives seq.image.
+bool ReadHeader(ProblemSink& sink, const JsonReader& r, AcousticSequence& seq) {
   bool header_ok = true;
   Guard(sink, [&] {
     const std::string format = r.String("format");
@@ -151,7 +144,11 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
     }
     if (version == kImageVersion) seq.image = SonarImageFormat();
   });
-  if (!header_ok) return;  // another format or version: its other keys mean nothing here
+  return header_ok;
+}
+
+// The image block of version 2: the frame's size within what sonars give.
+void ReadImageBlock(ProblemSink& sink, const JsonReader& r, AcousticSequence& seq) {
   if (seq.image) {
     Guard(sink, [&] {
       const JsonReader im = r.Object("image");
@@ -182,9 +179,10 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
   } else if (r.Has("image")) {
     Guard(sink, [&] { r.Fail(r.Required("image"), "image", "an image block needs \"version\": 2 (acoustic images)"); });
   }
-  Guard(sink, [&] {
-    if (auto name = r.OptionalString("name")) seq.name = *name;
-  });
+}
+
+// The sensor: its window, fields of view and measurement sigmas, plausible.
+void ReadSensor(ProblemSink& sink, const JsonReader& r, AcousticSequence& seq) {
   Guard(sink, [&] {
     const JsonReader s = r.Object("sensor");
     SonarSensor& q = seq.sensor;
@@ -225,6 +223,10 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
                   "the full elevation field of view must be below pi rad, got " + FormatDouble(q.elevation_fov));
     }
   });
+}
+
+// initial_pose and initial_pose_sigma within the survey's bounds.
+void ReadInitialPose(ProblemSink& sink, const JsonReader& r, AcousticSequence& seq) {
   Guard(sink, [&] {
     const std::vector<double> v = r.Numbers("initial_pose", 6);
     for (int i = 0; i < 6; ++i) {
@@ -254,6 +256,10 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
     }
     seq.initial_pose_sigma = Eigen::Map<const Vector6d>(v.data());
   });
+}
+
+// motion_noise: rates and floors of the odometry's noise.
+void ReadMotionNoise(ProblemSink& sink, const JsonReader& r, AcousticSequence& seq) {
   Guard(sink, [&] {
     const JsonReader m = r.Object("motion_noise");
     SonarMotionNoise& q = seq.motion_noise;
@@ -272,6 +278,26 @@ void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& s
     non_negative("translation_floor", q.translation_floor, false, kMaxTranslationFloor, "m per step");
     non_negative("rotation_floor", q.rotation_floor, false, kMaxAngleSigma, "rad per step: a turn");
   });
+}
+
+void ReadManifest(ProblemSink& sink, const std::string& dir, AcousticSequence& seq) {
+  const std::string path = Join(dir, "sonar.json");
+  const std::optional<std::string> text = ReadRequired(sink, path);
+  if (!text) return;
+  Json doc;
+  if (!Guard(sink, [&] { doc = Json::Parse(*text, path); })) return;
+  // Each top-level rule in its own guard so the validator sees them all.
+  std::optional<JsonReader> root;
+  if (!Guard(sink, [&] { root.emplace(doc, path); })) return;
+  const JsonReader& r = *root;
+  if (!ReadHeader(sink, r, seq)) return;
+  ReadImageBlock(sink, r, seq);
+  Guard(sink, [&] {
+    if (auto name = r.OptionalString("name")) seq.name = *name;
+  });
+  ReadSensor(sink, r, seq);
+  ReadInitialPose(sink, r, seq);
+  ReadMotionNoise(sink, r, seq);
 }
 
 // ---------------------------------------------------------------------------

@@ -88,30 +88,15 @@ Eigen::Vector3d NonZero3(const JsonReader& r, std::string_view key) {
   return v;
 }
 
-SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
-  JsonReader root(doc, file);
-  SurveyManifest m;
-  const std::string format = root.String("format");
-  if (format != "hull-survey") {
-    root.Fail(root.Required("format"), "format", "expected \"hull-survey\", got \"" + format + "\"");
-  }
-  const std::int64_t version = root.Integer("version");
-  if (version != 1 && version != 2) {
-    root.Fail(root.Required("version"), "version",
-              "unsupported version " + std::to_string(version) + "; this reader knows versions 1 and 2");
-  }
-  m.version = static_cast<int>(version);
-  m.name = root.OptionalString("name").value_or("");
-  m.vehicle = root.OptionalString("vehicle").value_or("");
-  m.model_hint = root.OptionalString("model_hint");
-  if (m.model_hint && m.model_hint->empty()) root.Fail(root.Required("model_hint"), "model_hint", "empty path");
+namespace {
 
-  const JsonReader cam = root.Object("camera");
+// camera.type, width and height: a known type and a size some camera has.
+void ReadCameraTypeAndSize(const JsonReader& cam, CameraRig& camera) {
   const std::string type = cam.String("type");
   if (type == "stereo") {
-    m.camera.type = CameraType::kStereo;
+    camera.type = CameraType::kStereo;
   } else if (type == "mono") {
-    m.camera.type = CameraType::kMono;
+    camera.type = CameraType::kMono;
   } else {
     cam.Fail(cam.Required("type"), "type", "expected \"stereo\" or \"mono\", got \"" + type + "\"");
   }
@@ -132,8 +117,32 @@ SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
                  " megapixels; expected at most " + std::to_string(plausible::kMaxImagePixels / 1000000) +
                  " (no survey camera has more)");
   }
-  m.camera.width = static_cast<int>(w);
-  m.camera.height = static_cast<int>(h);
+  camera.width = static_cast<int>(w);
+  camera.height = static_cast<int>(h);
+}
+
+}  // namespace
+
+SurveyManifest ParseManifest(const Json& doc, const std::string& file) {
+  JsonReader root(doc, file);
+  SurveyManifest m;
+  const std::string format = root.String("format");
+  if (format != "hull-survey") {
+    root.Fail(root.Required("format"), "format", "expected \"hull-survey\", got \"" + format + "\"");
+  }
+  const std::int64_t version = root.Integer("version");
+  if (version != 1 && version != 2) {
+    root.Fail(root.Required("version"), "version",
+              "unsupported version " + std::to_string(version) + "; this reader knows versions 1 and 2");
+  }
+  m.version = static_cast<int>(version);
+  m.name = root.OptionalString("name").value_or("");
+  m.vehicle = root.OptionalString("vehicle").value_or("");
+  m.model_hint = root.OptionalString("model_hint");
+  if (m.model_hint && m.model_hint->empty()) root.Fail(root.Required("model_hint"), "model_hint", "empty path");
+
+  const JsonReader cam = root.Object("camera");
+  ReadCameraTypeAndSize(cam, m.camera);
   m.camera.top = ReadIntrinsics(cam.Object("top"), m.camera.width, m.camera.height);
   if (m.camera.stereo()) {
     m.camera.bottom = ReadIntrinsics(cam.Object("bottom"), m.camera.width, m.camera.height);

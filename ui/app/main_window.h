@@ -124,6 +124,8 @@ class MainWindow : public QMainWindow {
   // The inspection's result views, menus and exports (main_window_results.cc).
   void CreateResultDocks();
   void ConnectResults();
+  void ConnectSurveyLayers();
+  void ConnectPanelsAndExports();
   void CreateInspectionMenu();
   // The images view and the feature extraction (main_window_images.cc).
   void CreateImagesDock();

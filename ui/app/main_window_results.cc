@@ -158,6 +158,12 @@ void MainWindow::ConnectResults() {
   connect(parameters_, &ParameterPanel::parametersChanged, this, update_sigmas);
   update_sigmas(parameters_->values());
 
+  ConnectSurveyLayers();
+  ConnectPanelsAndExports();
+}
+
+// The comparison and the photomosaic on screen: their layers, legends and panels.
+void MainWindow::ConnectSurveyLayers() {
   connect(session_, &Session::comparisonChanged, this, [this] {
     const auto& comparison = session_->comparison();
     if (comparison && !scene_->Stats(SceneLayer::kHeightChange).present) {
@@ -201,6 +207,11 @@ void MainWindow::ConnectResults() {
     }
     UpdatePlacement();
   });
+}
+
+// The compare and sonar panels, the exports and the report, the mosaic builder:
+// their failures and messages, the actions they enable, the parameters they use.
+void MainWindow::ConnectPanelsAndExports() {
   connect(compare_panel_, &SurveyComparePanel::compareRequested, this, &MainWindow::AskCompareSurveys);
   connect(compare_panel_, &SurveyComparePanel::objectSelected, this, [this](int index) {
     const auto& comparison = session_->comparison();
