@@ -10,12 +10,14 @@
 #include <QDockWidget>
 #include <QDoubleSpinBox>
 #include <QLabel>
+#include <QMessageBox>
 #include <QMimeData>
 #include <QProcess>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QStatusBar>
 #include <QTemporaryDir>
+#include <QTimer>
 #include <QUndoStack>
 #include <QUrl>
 #include <filesystem>
@@ -339,6 +341,53 @@ class MainWindowTest : public QObject {
       QVERIFY(std::abs(restored.view_up[i] - camera.view_up[i]) < 1e-9);
     }
     QCOMPARE(restored.view_angle, 24.0);
+  }
+
+  // Work is never lost without asking (issue 25): a changed parameter marks
+  // the title modified; Quit (and Open project) then asks Save / Discard /
+  // Cancel: Cancel keeps the window, its parameters and undo; Discard goes
+  // on; a saved project is unmodified again.
+  void unsavedWorkIsAskedAboutBeforeItIsLost() {
+    Window win;
+    QVERIFY(QTest::qWaitForWindowExposed(&win.w));
+    QVERIFY(!win.w.isWindowModified());
+    QVERIFY(win.w.windowTitle().contains(QStringLiteral("[*]")));  // where the mark goes
+    auto* sigma1 = qobject_cast<QDoubleSpinBox*>(win.w.parameterPanel()->editor(QStringLiteral("sigma1")));
+    QVERIFY(sigma1);
+    sigma1->setValue(0.03);
+    QVERIFY(win.w.isWindowModified());
+    // Answers the next question with `button`, recording its text.
+    QString asked;
+    const auto answer = [&](QMessageBox::StandardButton button) {
+      asked.clear();
+      QTimer::singleShot(200, [&asked, button] {
+        if (auto* box = qobject_cast<QMessageBox*>(QApplication::activeModalWidget())) {
+          asked = box->text() + QLatin1Char(' ') + box->informativeText();
+          box->grab().save(hull::ui::testing::OutputDir() + QStringLiteral("/unsaved_work_question.png"));
+          box->button(button)->click();
+        }
+      });
+    };
+    answer(QMessageBox::Cancel);
+    win.w.action(QStringLiteral("quit"))->trigger();
+    QVERIFY2(asked.contains(QStringLiteral("the parameters were changed")), qPrintable(asked));
+    QVERIFY2(asked.contains(QStringLiteral("before quitting")), qPrintable(asked));
+    QVERIFY(win.w.isVisible());
+    QCOMPARE(sigma1->value(), 0.03);
+    QCOMPARE(win.w.parameterPanel()->undoStack()->count(), 1);
+    // Undo back to the saved state: nothing to ask.
+    win.w.parameterPanel()->undoStack()->undo();
+    QVERIFY(!win.w.isWindowModified());
+    win.w.parameterPanel()->undoStack()->redo();
+    QVERIFY(win.w.isWindowModified());
+    QTemporaryDir dir;
+    QVERIFY(win.w.SaveProject(dir.filePath(QStringLiteral("p.hiproj"))));
+    QVERIFY(!win.w.isWindowModified());
+    sigma1->setValue(0.04);
+    answer(QMessageBox::Discard);
+    win.w.action(QStringLiteral("quit"))->trigger();
+    QVERIFY(!asked.isEmpty());
+    QTRY_VERIFY(!win.w.isVisible());
   }
 
   void droppedFilesAndTheCommandLineOpen() {

@@ -77,6 +77,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   CreateMenus();
   ConnectSession();
   ConnectResults();
+  ConnectWork();
   ConnectImages();
 
   results_label_ = new QLabel(this);
@@ -240,7 +241,9 @@ void MainWindow::CreateMenus() {
       QKeySequence(Qt::Key_F12)));
 
   QMenu* help = menuBar()->addMenu(QStringLiteral("&Help"));
-  help->addAction(NewAction(QStringLiteral("openDemo"), QStringLiteral("Open &demo"), this, [this] { OpenDemo(); }));
+  help->addAction(NewAction(QStringLiteral("openDemo"), QStringLiteral("Open &demo"), this, [this] {
+    if (MayDiscardWork(QStringLiteral("opening the demo"))) OpenDemo();
+  }));
   AddResultHelpEntries(help);
   help->addAction(
       NewAction(QStringLiteral("about"), QStringLiteral("&About HullInspect"), this, [this] { ShowAbout(); }));
@@ -312,7 +315,8 @@ void MainWindow::UpdateTitle() {
   } else if (session_->mesh()) {
     what = QFileInfo(session_->mesh()->path).fileName();
   }
-  setWindowTitle(what.isEmpty() ? QStringLiteral("HullInspect") : what + QStringLiteral(" — HullInspect"));
+  // [*]: Qt's place for the modified mark (setWindowModified).
+  setWindowTitle(what.isEmpty() ? QStringLiteral("HullInspect[*]") : what + QStringLiteral("[*] — HullInspect"));
 }
 
 void MainWindow::UpdateActions() {
@@ -334,7 +338,9 @@ void MainWindow::RebuildRecentMenu() {
   const QStringList paths = recent_->paths();
   for (const QString& path : paths) {
     QAction* a = recent_menu_->addAction(QDir::toNativeSeparators(path));
-    connect(a, &QAction::triggered, this, [this, path] { OpenPaths({path}); });
+    connect(a, &QAction::triggered, this, [this, path] {
+      if (MayDiscardWork(QStringLiteral("opening ") + QFileInfo(path).fileName())) OpenPaths({path});
+    });
   }
   if (paths.isEmpty()) {
     recent_menu_->addAction(QStringLiteral("(none yet)"))->setEnabled(false);
@@ -365,7 +371,11 @@ void MainWindow::OpenDemo() {
   documents_->OpenDemo([this] { scene_->ResetCamera(); });
 }
 
-bool MainWindow::SaveProject(const QString& path) { return documents_->SaveProject(path); }
+bool MainWindow::SaveProject(const QString& path) {
+  const bool saved = documents_->SaveProject(path);
+  if (saved) MarkWorkSaved();
+  return saved;
+}
 
 QImage MainWindow::GrabActiveView() { return GrabView(active_view_ ? active_view_.data() : scene_); }
 
@@ -394,16 +404,19 @@ bool MainWindow::SaveScreenshot(const QString& path) {
 }
 
 void MainWindow::AskOpenMesh() {
+  if (!MayDiscardWork(QStringLiteral("opening another mesh"))) return;
   const QString path = QFileDialog::getOpenFileName(this, QStringLiteral("Open a hull mesh"), QString(), MeshFilter());
   if (!path.isEmpty()) OpenPaths({path});
 }
 
 void MainWindow::AskOpenSurvey() {
+  if (!MayDiscardWork(QStringLiteral("opening another survey"))) return;
   const QString path = QFileDialog::getExistingDirectory(this, QStringLiteral("Open a survey bundle folder"));
   if (!path.isEmpty()) OpenPaths({path});
 }
 
 void MainWindow::AskOpenProject() {
+  if (!MayDiscardWork(QStringLiteral("opening another project"))) return;
   const QString path = QFileDialog::getOpenFileName(this, QStringLiteral("Open a project"), QString(),
                                                     QStringLiteral("HullInspect projects (*.hiproj)"));
   if (!path.isEmpty()) OpenPaths({path});
@@ -464,7 +477,7 @@ void MainWindow::dropEvent(QDropEvent* event) {
   }
   if (paths.isEmpty()) return;
   event->acceptProposedAction();
-  OpenPaths(paths);
+  if (MayDiscardWork(QStringLiteral("opening what was dropped"))) OpenPaths(paths);
 }
 
 void MainWindow::showEvent(QShowEvent* event) {
@@ -479,11 +492,6 @@ void MainWindow::showEvent(QShowEvent* event) {
     resizeDocks({docks[3]}, {300}, Qt::Vertical);  // the result views under the scene
     PrepareResultDocks();
   });
-}
-
-void MainWindow::closeEvent(QCloseEvent* event) {
-  jobs_->CancelAll();
-  QMainWindow::closeEvent(event);
 }
 
 }  // namespace hull::ui

@@ -150,6 +150,15 @@ class MainWindow : public QMainWindow {
   void RebuildRecentMenu();
   void UpdatePlacement();
   void UpdateTitle();
+  // main_window_work.cc: unsaved work (the parameters changed, by their undo
+  // stack, or results computed since the last save or open), the title's
+  // modified mark, and Save / Discard / Cancel before it would be lost;
+  // MayDiscardWork is true when the caller may go on.
+  void ConnectWork();
+  bool HasUnsavedWork() const;
+  void MarkWorkSaved();
+  void UpdateModified();
+  bool MayDiscardWork(const QString& action);
   void UpdateActions();
   void UpdateResults();
   QAction* NewAction(const QString& name, const QString& text, QObject* receiver, std::function<void()> slot,
@@ -172,6 +181,7 @@ class MainWindow : public QMainWindow {
   FrontEndController* front_end_ = nullptr;
   MosaicController* mosaic_ = nullptr;
   ReportExportController* report_export_ = nullptr;
+  bool results_unsaved_ = false;
   ImagesView* images_ = nullptr;
   QDockWidget* images_dock_ = nullptr;
   RecentFiles* recent_ = nullptr;
