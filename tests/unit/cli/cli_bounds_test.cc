@@ -26,11 +26,13 @@ using hull::testing::WriteText;
 
 bool Has(const CliRun& r, const std::string& text) { return r.output.find(text) != std::string::npos; }
 
-// The CLI, which must end within 10 s.
+// The CLI, which must end within 10 s (RefusalSeconds: more under the sanitizers).
 CliRun Cli(const std::vector<std::string>& args) {
   const auto t0 = std::chrono::steady_clock::now();
   CliRun r = hull::testing::RunProgram(HI_CLI_PATH, args);
-  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 10.0) << args[0];
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+            hull::testing::RefusalSeconds())
+      << args[0];
   return r;
 }
 
