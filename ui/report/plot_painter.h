@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "adjust/adjust_options.h"
+#include "base/axis_ticks.h"
 
 namespace hull::report {
 
@@ -27,10 +28,7 @@ QString ModelLabel(SurfaceModel m);  // "naive", "all-on-surface", "max-mixture"
 // A sans-serif font of `size` figure units.
 QFont FigureFont(double size, bool bold = false);
 
-// About `target` round tick values covering [lo, hi] (1, 2, 5 x 10^k steps).
-std::vector<double> NiceTicks(double lo, double hi, int target);
-// Powers of ten within [lo, hi] (lo > 0) for a logarithmic axis.
-std::vector<double> LogTicks(double lo, double hi);
+// NiceTicks and LogTicks: base/axis_ticks.h, shared with the screen's plots.
 // A tick label with the precision of the step; step <= 0: a logarithmic
 // axis ("10⁵", "2×10⁵", "500").
 QString TickLabel(double v, double step);

@@ -26,9 +26,6 @@ class PlotWidget : public QWidget {
   QSize sizeHint() const override { return {420, 260}; }
   QSize minimumSizeHint() const override { return {260, 180}; }
 
-  // "Nice" tick positions covering [lo, hi] (about `target` of them).
-  static std::vector<double> NiceTicks(double lo, double hi, int target);
-
  protected:
   void paintEvent(QPaintEvent* event) override;
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
-#include "ui/views/plot_widget.h"
+#include "base/axis_ticks.h"
 
 namespace hull::ui {
 
@@ -282,7 +282,7 @@ void SonarFanView::DrawGrid(QPainter& p, const SonarFanGeometry& g) {
   const double h = g.half_fov();
   QPen pen(kGrid, 1.0);
   // Range rings: "nice" ranges inside the window, labelled right of the fan's edge.
-  const std::vector<double> rings = PlotWidget::NiceTicks(g.range_min(), g.range_max(), 6);
+  const std::vector<double> rings = NiceTicks(g.range_min(), g.range_max(), 6);
   const QFontMetricsF fm(font());
   for (double r : rings) {
     if (r <= g.range_min() + 1e-9 || r >= g.range_max() - 1e-9) continue;
