@@ -8,7 +8,10 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 #include <algorithm>
+#include <array>
 #include <cmath>
+
+#include "base/deviation_colours.h"
 
 namespace hull::ui {
 
@@ -138,13 +141,10 @@ KeyframeView::KeyframeView(QWidget* parent) : QWidget(parent) {
 }
 
 QColor KeyframeView::DeviationColour(double deviation, double lo, double hi) {
-  // Moreland's cool-to-warm map at its three control points, blended in RGB.
+  // The scene's and the report's map (base/deviation_colours.h).
   const double t = std::clamp((deviation - lo) / std::max(hi - lo, 1e-9), 0.0, 1.0);
-  const double cool[3] = {0.230, 0.299, 0.754}, mid[3] = {0.865, 0.865, 0.865}, warm[3] = {0.706, 0.016, 0.150};
-  const double* a = t < 0.5 ? cool : mid;
-  const double* b = t < 0.5 ? mid : warm;
-  const double u = t < 0.5 ? 2 * t : 2 * t - 1;
-  return QColor::fromRgbF(a[0] + u * (b[0] - a[0]), a[1] + u * (b[1] - a[1]), a[2] + u * (b[2] - a[2]));
+  const std::array<double, 3> rgb = DivergingRgb(2 * t - 1);
+  return QColor::fromRgbF(rgb[0], rgb[1], rgb[2]);
 }
 
 void KeyframeView::SetMapping(std::shared_ptr<const MappingRun> mapping) {

@@ -3,7 +3,12 @@
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
 #include <vtkProperty.h>
+#include <vtkProperty2D.h>
 #include <vtkTextProperty.h>
+
+#include <array>
+
+#include "base/deviation_colours.h"
 
 namespace hull::ui {
 
@@ -158,10 +163,13 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
 
 vtkSmartPointer<vtkLookupTable> MakeDivergingLut() {
   vtkNew<vtkColorTransferFunction> ctf;
-  ctf->SetColorSpaceToDiverging();
-  ctf->AddRGBPoint(0.0, 0.230, 0.299, 0.754);
-  ctf->AddRGBPoint(0.5, 0.865, 0.865, 0.865);
-  ctf->AddRGBPoint(1.0, 0.706, 0.016, 0.150);
+  ctf->SetColorSpaceToRGB();
+  // The report's and the glTF export's map (base/deviation_colours.h) at
+  // 65 stops: the 256 entries differ from it by under 1/255.
+  for (int i = 0; i <= 64; ++i) {
+    const std::array<double, 3> rgb = DivergingRgb(i / 32.0 - 1);
+    ctf->AddRGBPoint(i / 64.0, rgb[0], rgb[1], rgb[2]);
+  }
   return SampledLut(ctf);
 }
 
@@ -197,6 +205,17 @@ vtkSmartPointer<vtkScalarBarActor> MakeLegend(vtkLookupTable* lut, const char* t
   legend->GetAnnotationTextProperty()->SetFontSize(12);
   legend->GetAnnotationTextProperty()->ItalicOff();
   legend->GetAnnotationTextProperty()->ShadowOff();
+  // White text on a dark panel: readable over a light model (zero deviation
+  // is near-white) as over the dark water.
+  constexpr double kPanel[3] = {0.06, 0.09, 0.13};
+  legend->DrawBackgroundOn();
+  legend->GetBackgroundProperty()->SetColor(kPanel[0], kPanel[1], kPanel[2]);
+  legend->GetBackgroundProperty()->SetOpacity(0.72);
+  // The title and the NaN annotation may reach beyond the panel: their own backing.
+  for (vtkTextProperty* t : {legend->GetTitleTextProperty(), legend->GetAnnotationTextProperty()}) {
+    t->SetBackgroundColor(kPanel[0], kPanel[1], kPanel[2]);
+    t->SetBackgroundOpacity(0.72);
+  }
   legend->VisibilityOff();
   return legend;
 }

@@ -17,7 +17,8 @@ namespace hull::ui {
 // Sets the actor's property (and pickability) for the layer.
 void StyleLayerActor(SceneLayer layer, vtkActor* actor);
 
-// Moreland's cool-to-warm diverging map (256 entries; NaN: mid grey).
+// The deviation map of the report and the glTF export (ColorBrewer RdBu,
+// base/deviation_colours.h; 256 entries; NaN: mid grey).
 vtkSmartPointer<vtkLookupTable> MakeDivergingLut();
 // A perceptually uniform sequential map (viridis, 256 entries).
 vtkSmartPointer<vtkLookupTable> MakeSequentialLut();

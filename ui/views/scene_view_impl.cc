@@ -64,8 +64,9 @@ SceneViewImpl::SceneViewImpl() {
   selection_->PickableOff();
   selection_->VisibilityOff();
 
-  // Moreland's cool-to-warm diverging map, shared by the landmark mappers,
-  // the heatmaps and the legend; NaN (not significant) is grey.
+  // The report's diverging map (RdBu, near-white at zero), shared by the
+  // landmark mappers, the heatmaps and the legend; NaN (not significant) is
+  // grey.
   deviation_lut_ = MakeDivergingLut();
   legend_ = MakeLegend(deviation_lut_, "Deviation (m)", "%+.3f");
   legend_->SetNanAnnotation("not significant");
