@@ -200,97 +200,64 @@ std::vector<TrueObject> PlaceObjects(const SurveySimulationOptions& o, const Mes
   return objs;
 }
 
-}  // namespace
-
-SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progress) {
-  o.Check();
-  Rng rng(o.seed);
-  SimulatedSurvey out;
-  progress.Update(0.0, "building the hull");
-
-  // ---- hull in M ------------------------------------------------------------
+// The CAD hull in M and where the survey goes along it.
+struct HullFrame {
   HullAxes axes;
-  axes.forward = o.forward.normalized();
-  axes.up = o.up.normalized();
+  double fmin = 1e300, fmax = -1e300, umin = 1e300;  // extent along forward; lowest point along up
+};
+
+// The parametric hull or the given mesh (its waterline at 60 % of its height
+// unless given), and its extent along the hull's axes.
+HullFrame LoadHull(const SurveySimulationOptions& o, TriangleMesh* cad) {
+  HullFrame h;
+  h.axes.forward = o.forward.normalized();
+  h.axes.up = o.up.normalized();
   if (o.mesh_path.empty()) {
-    out.cad = MakeParametricHull(o.hull_form);
-    axes.waterline = o.waterline >= 0 ? o.waterline : o.hull_form.draft;
+    *cad = MakeParametricHull(o.hull_form);
+    h.axes.waterline = o.waterline >= 0 ? o.waterline : o.hull_form.draft;
   } else {
     MeshLoadOptions lo;
     lo.scale = o.mesh_scale;
-    out.cad = LoadMesh(o.mesh_path, lo);
+    *cad = LoadMesh(o.mesh_path, lo);
     double umin = 1e300, umax = -1e300;
-    for (const auto& v : out.cad.vertices) {
-      umin = std::min(umin, v.dot(axes.up));
-      umax = std::max(umax, v.dot(axes.up));
+    for (const auto& v : cad->vertices) {
+      umin = std::min(umin, v.dot(h.axes.up));
+      umax = std::max(umax, v.dot(h.axes.up));
     }
-    axes.waterline = o.waterline >= 0 ? o.waterline : umin + 0.6 * (umax - umin);
+    h.axes.waterline = o.waterline >= 0 ? o.waterline : umin + 0.6 * (umax - umin);
   }
-  const MeshIndex cad(out.cad);
-  double fmin = 1e300, fmax = -1e300, umin = 1e300;
-  for (const auto& v : out.cad.vertices) {
-    fmin = std::min(fmin, v.dot(axes.forward));
-    fmax = std::max(fmax, v.dot(axes.forward));
-    umin = std::min(umin, v.dot(axes.up));
+  for (const auto& v : cad->vertices) {
+    h.fmin = std::min(h.fmin, v.dot(h.axes.forward));
+    h.fmax = std::max(h.fmax, v.dot(h.axes.forward));
+    h.umin = std::min(h.umin, v.dot(h.axes.up));
   }
-  LawnmowerOptions plan = o.plan;
-  if (plan.start < 0 || plan.end < 0) {
-    const double mid = 0.5 * (fmax - fmin);
-    plan.start = mid - 6.0;
-    plan.end = mid + 6.0;
-  }
-  const double s_centre = 0.5 * (plan.start + plan.end);
-  const Eigen::Vector3d centre_m = (fmin + s_centre) * axes.forward + umin * axes.up;
-  const Pose x_gM = ShipPlacement(axes, centre_m, o.heading_deg * kDeg);
+  return h;
+}
 
-  // ---- rig and its true extrinsic -------------------------------------------
-  SurveyManifest& man = out.bundle.manifest;
-  man.name = o.name;
-  man.vehicle = "HAUV";
-  man.model_hint = "hull.ply";
-  man.camera.type = o.camera;
-  if (o.camera_scale != 1.0) ScaleCamera(man.camera, o.camera_scale);
-  if (o.camera == CameraType::kMono) man.camera.top_to_bottom.setZero();
-  man.noise = o.noise;
-  man.model_axes = ModelAxes{axes.forward, axes.up};
-  Pose x_s_cT;
-  {
-    // Nominal (+) error; the error's translation lies mostly along the camera's optical axis (z).
-    const Pose e = SmallRandomPose(rng, o.extrinsic_error_m * 0.35, o.extrinsic_error_deg);
-    const Eigen::Vector3d t = e.translation() + Eigen::Vector3d(0, 0, rng.Sign() * o.extrinsic_error_m * 0.9);
-    x_s_cT = Pose::FromVector(man.camera.servo_to_top) * Pose(e.quaternion(), t);
-  }
-  const Pose x_cT_cB = Pose::FromVector(man.camera.top_to_bottom);
-  const Pose x_s_d = Pose::FromVector(man.servo_to_dvl);
-  const bool stereo = o.camera == CameraType::kStereo;
+// The survey's manifest (rig, noise, axes) and the rig's true extrinsic:
+// nominal plus an error whose translation lies mostly along the camera's
+// optical axis (z).
+Pose DescribeRig(const SurveySimulationOptions& o, const HullAxes& axes, SurveyManifest* man, Rng& rng) {
+  man->name = o.name;
+  man->vehicle = "HAUV";
+  man->model_hint = "hull.ply";
+  man->camera.type = o.camera;
+  if (o.camera_scale != 1.0) ScaleCamera(man->camera, o.camera_scale);
+  if (o.camera == CameraType::kMono) man->camera.top_to_bottom.setZero();
+  man->noise = o.noise;
+  man->model_axes = ModelAxes{axes.forward, axes.up};
+  const Pose e = SmallRandomPose(rng, o.extrinsic_error_m * 0.35, o.extrinsic_error_deg);
+  const Eigen::Vector3d t = e.translation() + Eigen::Vector3d(0, 0, rng.Sign() * o.extrinsic_error_m * 0.9);
+  return Pose::FromVector(man->camera.servo_to_top) * Pose(e.quaternion(), t);
+}
 
-  // ---- trajectory -------------------------------------------------------------
-  progress.Update(0.05, "planning the survey");
-  const std::vector<PlannedKeyframe> keys = PlanLawnmower(cad, axes, x_gM, man, x_s_cT, plan, rng);
-  if (keys.size() < 3) throw OptionError("plan", "the survey region holds fewer than 3 keyframes on this hull");
-  progress.ThrowIfCancelled();
-
-  // ---- foreign objects and the true surface -----------------------------------
-  SurveyTruth truth;
-  truth.x_gM = x_gM.ToVector();
-  truth.x_s_cT = x_s_cT.ToVector();
-  truth.objects = PlaceObjects(o, cad, axes, fmin, umin, s_centre, keys, x_gM, man, x_s_cT, rng);
-  std::vector<std::size_t> seed_index(truth.objects.size());
-  for (std::size_t i = 0; i < seed_index.size(); ++i) seed_index[i] = i;
-  if (o.changes.any()) seed_index = ApplyFoulingChanges(truth.objects, cad, axes.forward, o.changes);
-  for (std::size_t i = 0; i < truth.objects.size(); ++i) {
-    out.object_meshes.push_back(MakeObjectMesh(truth.objects[i], o.seed * 1000003 + seed_index[i]));
-  }
-  std::vector<int> face_object;
-  const TriangleMesh surface = TrueSurfaceMesh(out.cad, out.object_meshes, &face_object);
-  const MeshIndex truth_surface(surface);
-  progress.Update(0.1, "sampling features");
-
-  // ---- landmarks on the visible true surface ----------------------------------
-  const Pose x_Mg = x_gM.Inverse();
-  std::vector<Eigen::Vector3d> cam_m;
-  for (const auto& k : keys) cam_m.push_back(x_Mg * (k.x_gv * VehicleToCamera(man, x_s_cT, k.servo)).translation());
-  const PointIndex cams(cam_m);
+// Landmarks on the true surface within feature range of a camera: Poisson
+// per face at the hull's or the objects' feature density; object points
+// only where they stand off the CAD, hull points only where the saliency
+// field is above its non_salient_fraction quantile.
+std::vector<Landmark> SampleLandmarks(const SurveySimulationOptions& o, const TriangleMesh& surface,
+                                      const std::vector<int>& face_object, const MeshIndex& cad, const PointIndex& cams,
+                                      Rng& rng) {
   std::vector<Landmark> lms;
   const SaliencyField field(rng);
   std::vector<Landmark> hull_candidates;
@@ -324,105 +291,150 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
       if (values[i] > threshold) lms.push_back(hull_candidates[i]);
     }
   }
-  std::vector<Eigen::Vector3d> lm_g;
-  lm_g.reserve(lms.size());
-  for (const auto& l : lms) lm_g.push_back(x_gM * l.p_m);
-  const PointIndex lm_index(lm_g);
-  progress.ThrowIfCancelled();
+  return lms;
+}
 
-  // ---- observations and DVL per keyframe (parallel, deterministic) ------------
-  const int K = static_cast<int>(keys.size());
-  std::vector<std::vector<Observation>> obs(static_cast<std::size_t>(K));
-  std::vector<std::array<double, 4>> dvl(static_cast<std::size_t>(K));
-  std::vector<std::array<bool, 4>> dropped(static_cast<std::size_t>(K));
-  const CameraRig& camrig = man.camera;
+// What the sensors of every keyframe measure.
+struct KeyframeMeasurements {
+  std::vector<std::vector<Observation>> obs;  // per keyframe
+  std::vector<std::array<double, 4>> dvl;     // per keyframe: beam ranges (kNoReturn)
+  std::vector<std::array<bool, 4>> dropped;   // per keyframe: beams that dropped out
+};
+
+// The scene every keyframe measures: the true surface, the landmarks (in M
+// and in g, indexed) and the rig.
+struct MeasuredScene {
+  const SurveySimulationOptions& o;
+  const SurveyManifest& man;
+  const Pose& x_s_cT;
+  const Pose& x_Mg;
+  const MeshIndex& cad;
+  const MeshIndex& truth_surface;
+  const std::vector<int>& face_object;
+  const std::vector<Landmark>& lms;
+  const std::vector<Eigen::Vector3d>& lm_g;
+  const PointIndex& lm_index;
+};
+
+// The camera features keyframe k sees: in both images of a stereo rig,
+// unoccluded, near and frontal enough, detected; pixel noise; on a mono rig
+// a share of wrong matches.
+std::vector<Observation> ObserveFeatures(const MeasuredScene& s, const PlannedKeyframe& key, Rng& r) {
+  const SurveySimulationOptions& o = s.o;
+  const CameraRig& camrig = s.man.camera;
+  const bool stereo = o.camera == CameraType::kStereo;
   const double m = o.image_margin;
   auto inside = [&](const Eigen::Vector2d& uv) {
     return uv.x() >= m && uv.y() >= m && uv.x() <= camrig.width - 1 - m && uv.y() <= camrig.height - 1 - m;
   };
+  const Pose g_cT = key.x_gv * VehicleToCamera(s.man, s.x_s_cT, key.servo);
+  const Pose g_cB = g_cT * Pose::FromVector(camrig.top_to_bottom);
+  const Pose cT_g = g_cT.Inverse(), cB_g = g_cB.Inverse();
+  const Eigen::Vector3d cT_m = s.x_Mg * g_cT.translation(), cB_m = s.x_Mg * g_cB.translation();
+  auto visible = [&](const Eigen::Vector3d& cam_m, const Landmark& l) {
+    const Eigen::Vector3d d = l.p_m - cam_m;
+    const double dist = d.norm();
+    if (dist > o.max_feature_range) return false;
+    if (l.n_m.dot(-d / dist) < o.min_view_cosine) return false;
+    return !s.truth_surface.Raycast(cam_m, d / dist, dist - 1e-3).hit;
+  };
+  std::vector<Observation> obs;
+  for (const auto& [li, d2] : s.lm_index.Within(g_cT.translation(), o.max_feature_range)) {
+    (void)d2;
+    const Landmark& l = s.lms[static_cast<std::size_t>(li)];
+    const Eigen::Vector3d pt = cT_g * s.lm_g[static_cast<std::size_t>(li)];
+    if (pt.z() < 0.1) continue;
+    const Eigen::Vector2d uvT = camrig.top.Project(pt);
+    if (!inside(uvT)) continue;
+    Eigen::Vector2d uvB = Eigen::Vector2d::Zero();
+    if (stereo) {
+      const Eigen::Vector3d pb = cB_g * s.lm_g[static_cast<std::size_t>(li)];
+      if (pb.z() < 0.1) continue;
+      uvB = camrig.bottom.Project(pb);
+      if (!inside(uvB)) continue;
+    }
+    if (!visible(cT_m, l) || (stereo && !visible(cB_m, l))) continue;
+    if (!r.Bernoulli(o.detection_probability)) continue;
+    Observation ob{li, uvT, uvB, false};
+    const double sigma = o.noise.pixel_sigma;
+    ob.top += Eigen::Vector2d(r.TruncatedGaussian(sigma, 3.5), r.TruncatedGaussian(sigma, 3.5));
+    if (stereo) ob.bottom += Eigen::Vector2d(r.TruncatedGaussian(sigma, 3.5), r.TruncatedGaussian(sigma, 3.5));
+    if (!stereo && r.Bernoulli(o.wrong_match_fraction)) {
+      // A wrong match: the descriptor matched another spot of the image.
+      Eigen::Vector2d w;
+      do {
+        w = {r.Uniform(m, camrig.width - 1 - m), r.Uniform(m, camrig.height - 1 - m)};
+      } while ((w - uvT).norm() < 40.0);
+      ob.top = w;
+      ob.wrong = true;
+    }
+    obs.push_back(ob);
+  }
+  return obs;
+}
+
+// The DVL's four Janus beams of keyframe k cast against the true surface:
+// ranges with noise, drop-outs, and no return beyond dvl_max_range.
+void MeasureDvl(const MeasuredScene& s, const PlannedKeyframe& key, Rng& r, std::array<double, 4>* range,
+                std::array<bool, 4>* dropped) {
+  const SurveySimulationOptions& o = s.o;
+  const Pose g_d = key.x_gv * s.man.VehicleToServo(key.servo) * Pose::FromVector(s.man.servo_to_dvl);
+  const Eigen::Vector3d o_m = s.x_Mg * g_d.translation();
+  for (int b = 0; b < 4; ++b) {
+    const Eigen::Vector3d dir = s.x_Mg.Rotate(g_d.Rotate(s.man.BeamDirection(b)));
+    const RayHit hit = s.truth_surface.Raycast(o_m, dir, o.dvl_max_range);
+    double rb = kNoReturn;
+    bool drop = false;
+    if (hit.hit) {
+      // A return off foreign structure where the beam would miss the hull
+      // altogether (a patch grazed at the hull's silhouette) is one a DVL's
+      // bottom track rejects: treat it as a drop-out.
+      const bool grazing =
+          s.face_object[static_cast<std::size_t>(hit.face)] >= 0 && !s.cad.Raycast(o_m, dir, o.dvl_max_range).hit;
+      if (grazing || r.Bernoulli(o.dvl_dropout)) {
+        drop = true;
+      } else {
+        rb = hit.range + r.TruncatedGaussian(o.noise.dvl_range_sigma, 4.0);
+      }
+    }
+    (*range)[static_cast<std::size_t>(b)] = rb;
+    (*dropped)[static_cast<std::size_t>(b)] = drop;
+  }
+}
+
+// Every keyframe's features and DVL, in parallel and deterministic (a random
+// stream per keyframe).
+KeyframeMeasurements MeasureKeyframes(const MeasuredScene& s, const std::vector<PlannedKeyframe>& keys,
+                                      Progress& progress) {
+  const int K = static_cast<int>(keys.size());
+  KeyframeMeasurements out;
+  out.obs.resize(static_cast<std::size_t>(K));
+  out.dvl.resize(static_cast<std::size_t>(K));
+  out.dropped.resize(static_cast<std::size_t>(K));
   std::atomic<int> done{0};
   std::mutex progress_mutex;
   tbb::parallel_for(0, K, [&](int k) {
     if (progress.Cancelled()) return;
-    Rng r = Rng::ForItem(o.seed, 1, static_cast<std::uint64_t>(k));
-    const PlannedKeyframe& key = keys[static_cast<std::size_t>(k)];
-    const Pose g_cT = key.x_gv * VehicleToCamera(man, x_s_cT, key.servo);
-    const Pose g_cB = g_cT * x_cT_cB;
-    const Pose cT_g = g_cT.Inverse(), cB_g = g_cB.Inverse();
-    const Eigen::Vector3d cT_m = x_Mg * g_cT.translation(), cB_m = x_Mg * g_cB.translation();
-    auto visible = [&](const Eigen::Vector3d& cam_m, const Landmark& l) {
-      const Eigen::Vector3d d = l.p_m - cam_m;
-      const double dist = d.norm();
-      if (dist > o.max_feature_range) return false;
-      if (l.n_m.dot(-d / dist) < o.min_view_cosine) return false;
-      return !truth_surface.Raycast(cam_m, d / dist, dist - 1e-3).hit;
-    };
-    for (const auto& [li, d2] : lm_index.Within(g_cT.translation(), o.max_feature_range)) {
-      (void)d2;
-      const Landmark& l = lms[static_cast<std::size_t>(li)];
-      const Eigen::Vector3d pt = cT_g * lm_g[static_cast<std::size_t>(li)];
-      if (pt.z() < 0.1) continue;
-      const Eigen::Vector2d uvT = camrig.top.Project(pt);
-      if (!inside(uvT)) continue;
-      Eigen::Vector2d uvB = Eigen::Vector2d::Zero();
-      if (stereo) {
-        const Eigen::Vector3d pb = cB_g * lm_g[static_cast<std::size_t>(li)];
-        if (pb.z() < 0.1) continue;
-        uvB = camrig.bottom.Project(pb);
-        if (!inside(uvB)) continue;
-      }
-      if (!visible(cT_m, l) || (stereo && !visible(cB_m, l))) continue;
-      if (!r.Bernoulli(o.detection_probability)) continue;
-      Observation ob{li, uvT, uvB, false};
-      const double s = o.noise.pixel_sigma;
-      ob.top += Eigen::Vector2d(r.TruncatedGaussian(s, 3.5), r.TruncatedGaussian(s, 3.5));
-      if (stereo) ob.bottom += Eigen::Vector2d(r.TruncatedGaussian(s, 3.5), r.TruncatedGaussian(s, 3.5));
-      if (!stereo && r.Bernoulli(o.wrong_match_fraction)) {
-        // A wrong match: the descriptor matched another spot of the image.
-        Eigen::Vector2d w;
-        do {
-          w = {r.Uniform(m, camrig.width - 1 - m), r.Uniform(m, camrig.height - 1 - m)};
-        } while ((w - uvT).norm() < 40.0);
-        ob.top = w;
-        ob.wrong = true;
-      }
-      obs[static_cast<std::size_t>(k)].push_back(ob);
-    }
-    // DVL: four Janus beams cast against the true surface.
-    const Pose g_d = key.x_gv * man.VehicleToServo(key.servo) * x_s_d;
-    const Eigen::Vector3d o_m = x_Mg * g_d.translation();
-    for (int b = 0; b < 4; ++b) {
-      const Eigen::Vector3d dir = x_Mg.Rotate(g_d.Rotate(man.BeamDirection(b)));
-      const RayHit hit = truth_surface.Raycast(o_m, dir, o.dvl_max_range);
-      double range = kNoReturn;
-      bool drop = false;
-      if (hit.hit) {
-        // A return off foreign structure where the beam would miss the hull
-        // altogether (a patch grazed at the hull's silhouette) is one a DVL's
-        // bottom track rejects: treat it as a drop-out.
-        const bool grazing =
-            face_object[static_cast<std::size_t>(hit.face)] >= 0 && !cad.Raycast(o_m, dir, o.dvl_max_range).hit;
-        if (grazing || r.Bernoulli(o.dvl_dropout)) {
-          drop = true;
-        } else {
-          range = hit.range + r.TruncatedGaussian(o.noise.dvl_range_sigma, 4.0);
-        }
-      }
-      dvl[static_cast<std::size_t>(k)][static_cast<std::size_t>(b)] = range;
-      dropped[static_cast<std::size_t>(k)][static_cast<std::size_t>(b)] = drop;
-    }
+    Rng r = Rng::ForItem(s.o.seed, 1, static_cast<std::uint64_t>(k));
+    const auto ki = static_cast<std::size_t>(k);
+    out.obs[ki] = ObserveFeatures(s, keys[ki], r);
+    MeasureDvl(s, keys[ki], r, &out.dvl[ki], &out.dropped[ki]);
     const int n = ++done;
     if (n % 64 == 0) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       progress.Update(0.15 + 0.75 * n / K, "simulating keyframe " + std::to_string(n) + " of " + std::to_string(K));
     }
   });
-  progress.ThrowIfCancelled();
-  progress.Update(0.9, "assembling the bundle");
+  return out;
+}
 
-  // ---- keep landmarks seen (correctly) in at least two keyframes --------------
+// The landmarks seen (correctly) in at least two keyframes, numbered from 0
+// in order, become the bundle's tracks and the truth's landmarks.
+void KeepTrackedLandmarks(const SurveySimulationOptions& o, const std::vector<Landmark>& lms,
+                          const std::vector<Eigen::Vector3d>& lm_g, const KeyframeMeasurements& meas,
+                          SimulatedSurvey* out, SurveyTruth* truth) {
   std::vector<int> views(lms.size(), 0);
-  for (const auto& list : obs) {
+  for (const auto& list : meas.obs) {
     for (const auto& ob : list) {
       if (!ob.wrong) ++views[static_cast<std::size_t>(ob.landmark)];
     }
@@ -432,34 +444,41 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   for (std::size_t i = 0; i < lms.size(); ++i) {
     if (views[i] >= 2) new_id[i] = next++;
   }
-
-  SurveyBundle& b = out.bundle;
-  const NoiseModel& nz = o.noise;
   for (std::size_t i = 0; i < lms.size(); ++i) {
     if (new_id[i] < 0) continue;
     TrueLandmark t;
     t.landmark = new_id[i];
     t.p = lm_g[i];
     t.deviation = lms[i].object < 0 ? 0.0 : lms[i].deviation;
-    t.object = lms[i].object < 0 ? "" : truth.objects[static_cast<std::size_t>(lms[i].object)].id;
-    truth.landmarks.push_back(t);
+    t.object = lms[i].object < 0 ? "" : truth->objects[static_cast<std::size_t>(lms[i].object)].id;
+    truth->landmarks.push_back(t);
   }
-  for (int k = 0; k < K; ++k) {
-    for (const auto& ob : obs[static_cast<std::size_t>(k)]) {
+  const bool stereo = o.camera == CameraType::kStereo;
+  for (std::size_t k = 0; k < meas.obs.size(); ++k) {
+    for (const auto& ob : meas.obs[k]) {
       const std::int64_t id = new_id[static_cast<std::size_t>(ob.landmark)];
       if (id < 0) continue;
       FeatureObservation f;
-      f.keyframe = k;
+      f.keyframe = static_cast<std::int64_t>(k);
       f.landmark = id;
       f.top = ob.top;
       f.bottom = ob.bottom;
       f.has_bottom = stereo;
-      b.features.push_back(f);
-      if (ob.wrong) out.wrong_matches.emplace_back(k, id);
+      out->bundle.features.push_back(f);
+      if (ob.wrong) out->wrong_matches.emplace_back(static_cast<std::int64_t>(k), id);
     }
   }
+}
 
-  // ---- navigation: truth, dead reckoning from noisy odometry, zpr, servo -----
+// Navigation per keyframe: the truth, odometry with noise, the navigation
+// solution (dead reckoning from that odometry, or an online SLAM's
+// first-order Gauss-Markov error), depth, roll, pitch, the servo angle with
+// its bias, and the DVL's ranges.
+void SimulateNavigation(const SurveySimulationOptions& o, const std::vector<PlannedKeyframe>& keys,
+                        const KeyframeMeasurements& meas, Rng& rng, SimulatedSurvey* out, SurveyTruth* truth) {
+  SurveyBundle& b = out->bundle;
+  const NoiseModel& nz = o.noise;
+  const int K = static_cast<int>(keys.size());
   const double servo_bias = rng.Sign() * o.servo_bias_deg * kDeg * rng.Uniform(0.8, 1.2);
   Vector6d dr = (keys[0].x_gv * SmallRandomPose(rng, o.start_pose_error_m, o.start_pose_error_deg)).ToVector();
   Vector6d slam_err = Vector6d::Zero();
@@ -467,7 +486,7 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
     const PlannedKeyframe& key = keys[static_cast<std::size_t>(k)];
     Rng r = Rng::ForItem(o.seed, 2, static_cast<std::uint64_t>(k));
     const Vector6d xt = key.x_gv.ToVector();
-    truth.poses.push_back({k, xt, key.servo});
+    truth->poses.push_back({k, xt, key.servo});
     if (k > 0) {
       const PlannedKeyframe& prev = keys[static_cast<std::size_t>(k - 1)];
       const double dt = key.t - prev.t;
@@ -485,11 +504,11 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
     } else {
       // A first-order Gauss-Markov error per component, stationary std = slam_error.
       const double dt = k > 0 ? key.t - keys[static_cast<std::size_t>(k - 1)].t : 0.0;
-      const double a = std::exp(-dt / o.slam_correlation_s), b = std::sqrt(1 - a * a);
+      const double a = std::exp(-dt / o.slam_correlation_s), bb = std::sqrt(1 - a * a);
       for (int i = 0; i < 6; ++i) {
         // (depth: the pressure sensor keeps the SLAM depth closer)
         const double sigma = i < 3 ? o.slam_error_m * (i == 2 ? 0.3 : 1.0) : o.slam_error_deg * kDeg;
-        slam_err[i] = k == 0 ? r.Gaussian(sigma) : a * slam_err[i] + b * r.Gaussian(sigma);
+        slam_err[i] = k == 0 ? r.Gaussian(sigma) : a * slam_err[i] + bb * r.Gaussian(sigma);
       }
       n.x_gv = (key.x_gv * Pose::FromVector(slam_err)).ToVector();
     }
@@ -500,22 +519,112 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
     b.nav.push_back(n);
     DvlRecord d;
     d.keyframe = k;
-    d.range = dvl[static_cast<std::size_t>(k)];
+    d.range = meas.dvl[static_cast<std::size_t>(k)];
     b.dvl.push_back(d);
     for (int bm = 0; bm < 4; ++bm) {
-      if (dropped[static_cast<std::size_t>(k)][static_cast<std::size_t>(bm)]) out.dvl_dropouts.emplace_back(k, bm + 1);
+      if (meas.dropped[static_cast<std::size_t>(k)][static_cast<std::size_t>(bm)]) {
+        out->dvl_dropouts.emplace_back(k, bm + 1);
+      }
     }
   }
+}
 
-  // ---- a wrong model-pose guess: rotated about the surveyed region ------------
-  {
-    Eigen::Vector3d c = Eigen::Vector3d::Zero();
-    for (const auto& t : truth.landmarks) c += x_Mg * t.p;
-    if (!truth.landmarks.empty()) c /= static_cast<double>(truth.landmarks.size());
-    const Pose d = SmallRandomPose(rng, o.model_pose_error_m, o.model_pose_error_deg);
-    const Pose about(d.quaternion(), c - d.Rotate(c) + d.translation());
-    man.model_pose_guess = (x_gM * about).ToVector();
+// A wrong model-pose guess: the true x_gM rotated about the surveyed region
+// (the landmarks' centroid in M).
+Vector6d GuessModelPose(const SurveySimulationOptions& o, const SurveyTruth& truth, const Pose& x_gM, Rng& rng) {
+  const Pose x_Mg = x_gM.Inverse();
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& t : truth.landmarks) c += x_Mg * t.p;
+  if (!truth.landmarks.empty()) c /= static_cast<double>(truth.landmarks.size());
+  const Pose d = SmallRandomPose(rng, o.model_pose_error_m, o.model_pose_error_deg);
+  const Pose about(d.quaternion(), c - d.Rotate(c) + d.translation());
+  return (x_gM * about).ToVector();
+}
+
+// Version 2: which images exist (a few frames may be dropped); the pixels are
+// rendered when the bundle is written.
+SurveyImages ListImages(const SurveySimulationOptions& o, int K) {
+  const bool stereo = o.camera == CameraType::kStereo;
+  SurveyImages listing;
+  for (int k = 0; k < K; ++k) {
+    Rng r = Rng::ForItem(o.seed, 3, static_cast<std::uint64_t>(k));
+    KeyframeImages f;
+    f.keyframe = k;
+    for (bool bottom : {false, true}) {
+      if (bottom && !stereo) continue;
+      ++listing.expected;
+      if (r.Bernoulli(o.imaging.image_dropout)) {
+        ++listing.dropped;
+        continue;
+      }
+      (bottom ? f.bottom : f.top) = "images/" + SurveyImageName(k, bottom);
+    }
+    listing.frames.push_back(f);
   }
+  return listing;
+}
+
+}  // namespace
+
+SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progress) {
+  o.Check();
+  Rng rng(o.seed);
+  SimulatedSurvey out;
+  progress.Update(0.0, "building the hull");
+  const HullFrame hull = LoadHull(o, &out.cad);
+  const MeshIndex cad(out.cad);
+  LawnmowerOptions plan = o.plan;
+  if (plan.start < 0 || plan.end < 0) {  // the middle 12 m
+    const double mid = 0.5 * (hull.fmax - hull.fmin);
+    plan.start = mid - 6.0;
+    plan.end = mid + 6.0;
+  }
+  const double s_centre = 0.5 * (plan.start + plan.end);
+  const Eigen::Vector3d centre_m = (hull.fmin + s_centre) * hull.axes.forward + hull.umin * hull.axes.up;
+  const Pose x_gM = ShipPlacement(hull.axes, centre_m, o.heading_deg * kDeg);
+  SurveyManifest& man = out.bundle.manifest;
+  const Pose x_s_cT = DescribeRig(o, hull.axes, &man, rng);
+
+  progress.Update(0.05, "planning the survey");
+  const std::vector<PlannedKeyframe> keys = PlanLawnmower(cad, hull.axes, x_gM, man, x_s_cT, plan, rng);
+  if (keys.size() < 3) throw OptionError("plan", "the survey region holds fewer than 3 keyframes on this hull");
+  progress.ThrowIfCancelled();
+
+  // Foreign objects and the true surface.
+  SurveyTruth truth;
+  truth.x_gM = x_gM.ToVector();
+  truth.x_s_cT = x_s_cT.ToVector();
+  truth.objects = PlaceObjects(o, cad, hull.axes, hull.fmin, hull.umin, s_centre, keys, x_gM, man, x_s_cT, rng);
+  std::vector<std::size_t> seed_index(truth.objects.size());
+  for (std::size_t i = 0; i < seed_index.size(); ++i) seed_index[i] = i;
+  if (o.changes.any()) seed_index = ApplyFoulingChanges(truth.objects, cad, hull.axes.forward, o.changes);
+  for (std::size_t i = 0; i < truth.objects.size(); ++i) {
+    out.object_meshes.push_back(MakeObjectMesh(truth.objects[i], o.seed * 1000003 + seed_index[i]));
+  }
+  std::vector<int> face_object;
+  const TriangleMesh surface = TrueSurfaceMesh(out.cad, out.object_meshes, &face_object);
+  const MeshIndex truth_surface(surface);
+  progress.Update(0.1, "sampling features");
+
+  const Pose x_Mg = x_gM.Inverse();
+  std::vector<Eigen::Vector3d> cam_m;
+  for (const auto& k : keys) cam_m.push_back(x_Mg * (k.x_gv * VehicleToCamera(man, x_s_cT, k.servo)).translation());
+  const std::vector<Landmark> lms = SampleLandmarks(o, surface, face_object, cad, PointIndex(cam_m), rng);
+  std::vector<Eigen::Vector3d> lm_g;
+  lm_g.reserve(lms.size());
+  for (const auto& l : lms) lm_g.push_back(x_gM * l.p_m);
+  const PointIndex lm_index(lm_g);
+  progress.ThrowIfCancelled();
+
+  const MeasuredScene scene{o, man, x_s_cT, x_Mg, cad, truth_surface, face_object, lms, lm_g, lm_index};
+  const KeyframeMeasurements meas = MeasureKeyframes(scene, keys, progress);
+  progress.ThrowIfCancelled();
+  progress.Update(0.9, "assembling the bundle");
+  KeepTrackedLandmarks(o, lms, lm_g, meas, &out, &truth);
+  SimulateNavigation(o, keys, meas, rng, &out, &truth);
+  man.model_pose_guess = GuessModelPose(o, truth, x_gM, rng);
+
+  SurveyBundle& b = out.bundle;
   if (o.write_landmarks) {
     std::vector<LandmarkRecord> init;
     Rng r(o.seed ^ 0xABCDEF);
@@ -527,31 +636,13 @@ SimulatedSurvey SimulateSurvey(const SurveySimulationOptions& o, Progress& progr
   b.truth = std::move(truth);
   out.albedo_seed = o.seed & ((std::uint64_t{1} << 52) - 1);  // exact in truth/albedo.json
   if (o.images) {
-    // Version 2: which images exist (a few frames may be dropped); the
-    // pixels are rendered when the bundle is written.
     man.version = 2;
     man.imaging = ImagingNote{std::nullopt, std::string("strobe")};
-    SurveyImages listing;
-    for (int k = 0; k < K; ++k) {
-      Rng r = Rng::ForItem(o.seed, 3, static_cast<std::uint64_t>(k));
-      KeyframeImages f;
-      f.keyframe = k;
-      for (bool bottom : {false, true}) {
-        if (bottom && !stereo) continue;
-        ++listing.expected;
-        if (r.Bernoulli(o.imaging.image_dropout)) {
-          ++listing.dropped;
-          continue;
-        }
-        (bottom ? f.bottom : f.top) = "images/" + SurveyImageName(k, bottom);
-      }
-      listing.frames.push_back(f);
-    }
-    b.images = std::move(listing);
+    b.images = ListImages(o, static_cast<int>(keys.size()));
     out.imaging = o.imaging;
   }
   if (!o.shift.isZero()) ShiftSurvey(b, o.shift);
-  progress.Update(1.0, "simulated " + std::to_string(K) + " keyframes, " + std::to_string(b.features.size()) +
+  progress.Update(1.0, "simulated " + std::to_string(keys.size()) + " keyframes, " + std::to_string(b.features.size()) +
                            " observations of " + std::to_string(b.truth->landmarks.size()) + " landmarks");
   return out;
 }
