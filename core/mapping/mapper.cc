@@ -78,8 +78,80 @@ struct Snapped {
   std::unique_ptr<PointIndex> index;
 };
 
+// The lumps' apexes beyond their highest features (peak_fit.h) that were
+// accepted: where each stands on the CAD, and which of r.peaks it is.
+struct AcceptedApexes {
+  std::vector<Eigen::Vector3d> feet;
+  std::vector<std::size_t> peak;  // per foot: index into MappingResult::peaks
+  std::vector<int> vertex;        // per foot: the prior's vertex moved under it (-1: none)
+};
+
+AcceptedApexes AcceptApexes(const std::vector<FittedPeak>& peaks) {
+  AcceptedApexes a;
+  for (std::size_t i = 0; i < peaks.size(); ++i) {
+    if (!peaks[i].accepted) continue;
+    a.feet.push_back(peaks[i].foot);
+    a.peak.push_back(i);
+  }
+  return a;
+}
+
+// The accepted apexes: the vertex under each rises to it where the fusion
+// moved that vertex (the shapes of `fusion_support` views reach it) and left
+// it lower. Each peak says why it was or was not placed.
+void PlaceApexes(const AcceptedApexes& apexes, const TriangleMesh& prior, FusionResult& fused, MappingResult& r) {
+  MappingSummary& s = r.summary;
+  for (std::size_t i = 0; i < apexes.feet.size(); ++i) {
+    FittedPeak& peak = r.peaks[apexes.peak[i]];
+    ++s.peaks_fitted;
+    const int v = apexes.vertex.empty() ? -1 : apexes.vertex[i];
+    if (v < 0) {
+      peak.placement = "no vertex could be moved under it";
+      continue;
+    }
+    const std::size_t vi = static_cast<std::size_t>(v);
+    if (fused.support[vi] == 0) {
+      peak.placement = "its vertex is not fused";
+      continue;
+    }
+    const double h = (fused.vertices[vi] - prior.vertices[vi]).dot(peak.normal);
+    if (!(h < peak.height)) {
+      peak.placement = "the fused vertex is already higher";
+      continue;
+    }
+    fused.vertices[vi] = prior.vertices[vi] + peak.height * peak.normal;
+    peak.placement = "placed";
+    peak.vertex = v;
+    ++s.peaks_placed;
+  }
+}
+
+// The summary's counts of the shapes, the model and the areas.
+void CountResult(const std::vector<KeyframeShapes>& shapes, const FusionResult& fused,
+                 const InspectionCoverage& inspection, MappingResult& r) {
+  MappingSummary& s = r.summary;
+  s.keyframes = shapes.size();
+  for (const auto& k : shapes) {
+    s.points += k.points.size();
+    for (const auto& p : k.points) s.points_clustered += p.cluster != ShapePoint::kBelowTau;
+    s.shapes += k.shapes.size();
+    if (!k.shapes.empty()) ++s.keyframes_with_shapes;
+    for (const auto& sh : k.shapes) s.shape_triangles += sh.triangles.size();
+  }
+  s.model_vertices = r.model.num_vertices();
+  s.model_faces = r.model.num_faces();
+  for (const int c : fused.support) s.vertices_fused += c > 0;
+  s.fusion_hits = fused.hits;
+  s.hull_area = inspection.total_hull_area;
+  s.inspected_area = inspection.total_inspected_area;
+  for (const auto& z : r.zones) s.covered_area += z.covered_area;
+}
+
 }  // namespace
 
+// The mapper's state, kept between runs: each stage reuses what the last run
+// made when the options it reads are unchanged (shapes, the refined mesh,
+// the inspected area).
 struct Mapper::Impl {
   MappingInput input;
   TriangleMesh cad;
@@ -100,6 +172,15 @@ struct Mapper::Impl {
   InspectionCoverage inspection;
 
   MappingResult Run(const MappingOptions& o, Progress& progress);
+
+ private:
+  void DetectShapesOnce(const MappingOptions& o, Progress& progress, MappingSummary& s);
+  void RefineOnce(const MappingOptions& o, Progress& progress, MappingSummary& s);
+  std::vector<PeakFeature> SnapToFeatures(const MappingOptions& o, AcceptedApexes& apexes,
+                                          std::vector<int>* peak_vertex);
+  void MeasureDeviation(const MappingOptions& o, const TriangleMesh& prior, const FusionResult& fused,
+                        MappingResult& r) const;
+  void MeasureInspectionOnce(const MappingOptions& o, Progress& progress, MappingSummary& s);
 };
 
 Mapper::Mapper(MappingInput input, TriangleMesh cad) : impl_(std::make_unique<Impl>()) {
@@ -138,20 +219,9 @@ MappingResult Mapper::Run(const MappingOptions& options, Progress& progress) {
   return result;
 }
 
-MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
-  const auto start = Clock::now();
-  MappingResult r;
-  r.options = o;
-  MappingSummary& s = r.summary;
-  s.source = input.source;
-  if (input.landmarks.empty()) {
-    throw InsufficientData("mapping",
-                           "the adjustment holds no landmarks: nothing was measured on the hull, so nothing can be "
-                           "mapped or rated");
-  }
-
-  // Algorithm 1 per keyframe.
-  auto t = Clock::now();
+// Algorithm 1 per keyframe, again only when an option it reads changed.
+void Mapper::Impl::DetectShapesOnce(const MappingOptions& o, Progress& progress, MappingSummary& s) {
+  const auto t = Clock::now();
   progress.Update(0.0, "detecting shapes (Algorithm 1)");
   const ShapeKey sk{o.tau,
                     o.alpha,
@@ -166,9 +236,12 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
     shape_key = sk;
   }
   s.seconds.shapes = Since(t);
+}
 
-  // The region where shapes depart from the CAD, and the mesh refined there.
-  t = Clock::now();
+// The region where shapes depart from the CAD, and the mesh refined there
+// (kept when the last refinement already covers the region at this edge).
+void Mapper::Impl::RefineOnce(const MappingOptions& o, Progress& progress, MappingSummary& s) {
+  auto t = Clock::now();
   progress.Update(0.2, "finding where the shapes depart from the model");
   SubProgress region_progress(progress, 0.2, 0.3);
   const RefinementRegion region = DepartureRegion(shapes, x_M_cT, *cad_index, o, region_progress);
@@ -192,88 +265,39 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   s.seconds.refinement = Since(t);
   s.region_cells = refined->refined.region.num_cells();
   s.refined_area = refined->refined.refined_area;
-  snapped.reset();
-  // Lumps' apexes beyond their highest features (peak_fit.h): a vertex is
-  // moved under each accepted apex, before the features' vertices.
-  std::vector<int> apex_vertex;
-  if (o.fusion_along_normal && o.fusion_keep_peaks && o.peak_fit) {
-    r.peaks = FitPeaks(input, *cad_index, shapes, PeakFitOptionsFor(o));
-  }
-  std::vector<Eigen::Vector3d> apex_feet;
-  std::vector<std::size_t> apex_peak;  // per apex foot: index into r.peaks
-  for (std::size_t i = 0; i < r.peaks.size(); ++i) {
-    if (!r.peaks[i].accepted) continue;
-    apex_feet.push_back(r.peaks[i].foot);
-    apex_peak.push_back(i);
-  }
-  // Peak features (shape_fusion.h): lump tops that no keyframe could mesh.
-  std::vector<PeakFeature> peak_features;
-  std::vector<int> peak_vertex;
-  if (o.fusion_along_normal && o.fusion_keep_peaks) {
-    const Pose x_Mg = input.x_gM.Inverse();
-    std::vector<Eigen::Vector3d> landmarks_M(input.landmarks.size());
-    std::vector<double> landmark_deviation(input.landmarks.size());
-    for (std::size_t i = 0; i < input.landmarks.size(); ++i) {
-      landmarks_M[i] = x_Mg * input.landmarks[i].p_g;
-      landmark_deviation[i] = input.landmarks[i].deviation;
-    }
-    peak_features = FindPeakFeatures(shapes, landmarks_M, landmark_deviation, *cad_index, o.tau, o.object_min_height,
-                                     o.dbscan_eps, o.fusion_support);
-    auto next = std::make_unique<Snapped>();
-    next->mesh = refined->refined.mesh;
-    SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, x_Mg, o.fusion_support, o.object_min_height,
-                           0.6 * o.refine_edge, apex_feet, &apex_vertex, peak_features, &peak_vertex);
-    next->tree = std::make_unique<PointConeTree>(next->mesh.vertices);
-    next->index = std::make_unique<PointIndex>(next->mesh.vertices);
-    snapped = std::move(next);
-  }
-  const TriangleMesh& prior = snapped ? snapped->mesh : refined->refined.mesh;
-  const PointConeTree& prior_tree = snapped ? *snapped->tree : *refined->tree;
-  const PointIndex& prior_index = snapped ? *snapped->index : *refined->index;
+}
 
-  // Algorithm 2.
-  t = Clock::now();
-  progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
-  SubProgress fusion_progress(progress, 0.5, 0.8);
-  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band, o.fusion_along_normal};
-  FusionResult fused = FuseShapes(prior, prior_tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
-  // The accepted apexes: the vertex under each rises to it where the fusion
-  // moved that vertex (the shapes of `fusion_support` views reach it) and
-  // left it lower.
-  for (std::size_t i = 0; i < apex_feet.size(); ++i) {
-    FittedPeak& peak = r.peaks[apex_peak[i]];
-    ++s.peaks_fitted;
-    const int v = apex_vertex.empty() ? -1 : apex_vertex[i];
-    if (v < 0) {
-      peak.placement = "no vertex could be moved under it";
-      continue;
-    }
-    const std::size_t vi = static_cast<std::size_t>(v);
-    if (fused.support[vi] == 0) {
-      peak.placement = "its vertex is not fused";
-      continue;
-    }
-    const double h = (fused.vertices[vi] - prior.vertices[vi]).dot(peak.normal);
-    if (!(h < peak.height)) {
-      peak.placement = "the fused vertex is already higher";
-      continue;
-    }
-    fused.vertices[vi] = prior.vertices[vi] + peak.height * peak.normal;
-    peak.placement = "placed";
-    peak.vertex = v;
-    ++s.peaks_placed;
+// Fusion along normals: the refined mesh with vertices moved under the
+// features and the accepted apexes (SnapVerticesToFeatures; `snapped`), and
+// the peak features (shape_fusion.h: lump tops that no keyframe could mesh)
+// with the vertex under each.
+std::vector<PeakFeature> Mapper::Impl::SnapToFeatures(const MappingOptions& o, AcceptedApexes& apexes,
+                                                      std::vector<int>* peak_vertex) {
+  const Pose x_Mg = input.x_gM.Inverse();
+  std::vector<Eigen::Vector3d> landmarks_M(input.landmarks.size());
+  std::vector<double> landmark_deviation(input.landmarks.size());
+  for (std::size_t i = 0; i < input.landmarks.size(); ++i) {
+    landmarks_M[i] = x_Mg * input.landmarks[i].p_g;
+    landmark_deviation[i] = input.landmarks[i].deviation;
   }
-  if (!peak_features.empty()) {
-    s.peak_features = peak_features.size();
-    s.peak_features_raised =
-        static_cast<std::size_t>(RaisePeakFeatures(prior, peak_features, peak_vertex, o.object_min_height, fused));
-  }
-  s.seconds.fusion = Since(t);
+  std::vector<PeakFeature> peak_features = FindPeakFeatures(shapes, landmarks_M, landmark_deviation, *cad_index, o.tau,
+                                                            o.object_min_height, o.dbscan_eps, o.fusion_support);
+  auto next = std::make_unique<Snapped>();
+  next->mesh = refined->refined.mesh;
+  SnapVerticesToFeatures(next->mesh, *refined->index, *cad_index, shapes, x_Mg, o.fusion_support, o.object_min_height,
+                         0.6 * o.refine_edge, apexes.feet, &apexes.vertex, peak_features, peak_vertex);
+  next->tree = std::make_unique<PointConeTree>(next->mesh.vertices);
+  next->index = std::make_unique<PointIndex>(next->mesh.vertices);
+  snapped = std::move(next);
+  return peak_features;
+}
 
-  // Every vertex's signed distance to the CAD surface (fused or not: a
-  // vertex no shape touched lies on the CAD, within rounding).
-  t = Clock::now();
-  progress.Update(0.8, "measuring the fused model's deviation from the CAD");
+// The remeshed model: every vertex's signed distance to the CAD surface
+// (fused or not: a vertex no shape touched lies on the CAD, within
+// rounding), its fusion count, and the sigma_h of the nearest landmark that
+// has one with whether the deviation is significant against it.
+void Mapper::Impl::MeasureDeviation(const MappingOptions& o, const TriangleMesh& prior, const FusionResult& fused,
+                                    MappingResult& r) const {
   std::vector<double> deviation(prior.num_vertices(), 0.0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, prior.num_vertices(), 1024),
                     [&](const tbb::blocked_range<std::size_t>& range) {
@@ -286,23 +310,22 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
   r.model.ComputeNormals();
   r.model.SetScalar("deviation", deviation);
   r.model.SetScalar("fusions", std::vector<double>(fused.count.begin(), fused.count.end()));
-  // Per-vertex sigma: the sigma_h of the nearest landmark that has one.
-  if (landmark_sigma_index) {
-    std::vector<double> sigma(prior.num_vertices(), std::nan("")), significant(prior.num_vertices(), 0.0);
-    tbb::parallel_for(std::size_t(0), prior.num_vertices(), [&](std::size_t i) {
-      const auto nearest = landmark_sigma_index->NearestOne(fused.vertices[i]);
-      if (nearest.first < 0) return;
-      sigma[i] = landmark_sigma[static_cast<std::size_t>(nearest.first)];
-      significant[i] = std::abs(deviation[i]) > o.significance_k * sigma[i] ? 1.0 : 0.0;
-    });
-    r.model.SetScalar("sigma", sigma);
-    r.model.SetScalar("significant", significant);
-  }
-  s.seconds.deviation = Since(t);
-  progress.ThrowIfCancelled();
+  if (!landmark_sigma_index) return;
+  std::vector<double> sigma(prior.num_vertices(), std::nan("")), significant(prior.num_vertices(), 0.0);
+  tbb::parallel_for(std::size_t(0), prior.num_vertices(), [&](std::size_t i) {
+    const auto nearest = landmark_sigma_index->NearestOne(fused.vertices[i]);
+    if (nearest.first < 0) return;
+    sigma[i] = landmark_sigma[static_cast<std::size_t>(nearest.first)];
+    significant[i] = std::abs(deviation[i]) > o.significance_k * sigma[i] ? 1.0 : 0.0;
+  });
+  r.model.SetScalar("sigma", sigma);
+  r.model.SetScalar("significant", significant);
+}
 
-  // The inspected area (cached).
-  t = Clock::now();
+// The inspected area, again only when an option it reads changed; a survey
+// that inspected none of the model is InsufficientData.
+void Mapper::Impl::MeasureInspectionOnce(const MappingOptions& o, Progress& progress, MappingSummary& s) {
+  const auto t = Clock::now();
   const InspectionKey ik{o.stations, o.bottom_angle_deg, o.inspection_spacing, o.inspection_range, o.dbscan_min_points};
   if (!inspection_key || !(*inspection_key == ik)) {
     progress.Update(0.85, "measuring the inspected area");
@@ -320,32 +343,67 @@ MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
                                           " landmarks or more sees the CAD surface within " +
                                           FormatDouble(o.inspection_range) + " m (a wrong mesh or model pose?)");
   }
+}
+
+MappingResult Mapper::Impl::Run(const MappingOptions& o, Progress& progress) {
+  const auto start = Clock::now();
+  MappingResult r;
+  r.options = o;
+  MappingSummary& s = r.summary;
+  s.source = input.source;
+  if (input.landmarks.empty()) {
+    throw InsufficientData("mapping",
+                           "the adjustment holds no landmarks: nothing was measured on the hull, so nothing can be "
+                           "mapped or rated");
+  }
+  DetectShapesOnce(o, progress, s);
+  RefineOnce(o, progress, s);
+  snapped.reset();
+  // Lumps' apexes beyond their highest features: a vertex is moved under
+  // each accepted apex, before the features' vertices.
+  if (o.fusion_along_normal && o.fusion_keep_peaks && o.peak_fit) {
+    r.peaks = FitPeaks(input, *cad_index, shapes, PeakFitOptionsFor(o));
+  }
+  AcceptedApexes apexes = AcceptApexes(r.peaks);
+  std::vector<PeakFeature> peak_features;
+  std::vector<int> peak_vertex;
+  if (o.fusion_along_normal && o.fusion_keep_peaks) peak_features = SnapToFeatures(o, apexes, &peak_vertex);
+  const TriangleMesh& prior = snapped ? snapped->mesh : refined->refined.mesh;
+  const PointConeTree& prior_tree = snapped ? *snapped->tree : *refined->tree;
+  const PointIndex& prior_index = snapped ? *snapped->index : *refined->index;
+
+  // Algorithm 2.
+  auto t = Clock::now();
+  progress.Update(0.5, "fusing shapes into the model (Algorithm 2)");
+  SubProgress fusion_progress(progress, 0.5, 0.8);
+  const FusionRule rule{o.fusion_keep_peaks, o.fusion_support, o.fusion_peak_band, o.fusion_along_normal};
+  FusionResult fused = FuseShapes(prior, prior_tree, x_M_cT, shapes, o.fusion_radius, rule, fusion_progress);
+  PlaceApexes(apexes, prior, fused, r);
+  if (!peak_features.empty()) {
+    s.peak_features = peak_features.size();
+    s.peak_features_raised =
+        static_cast<std::size_t>(RaisePeakFeatures(prior, peak_features, peak_vertex, o.object_min_height, fused));
+  }
+  s.seconds.fusion = Since(t);
+
+  t = Clock::now();
+  progress.Update(0.8, "measuring the fused model's deviation from the CAD");
+  MeasureDeviation(o, prior, fused, r);
+  s.seconds.deviation = Since(t);
+  progress.ThrowIfCancelled();
+  MeasureInspectionOnce(o, progress, s);
 
   // Objects and the assessment.
   t = Clock::now();
   progress.Update(0.95, "detecting objects and rating the zones");
+  const std::vector<double>& deviation = *r.model.FindScalar("deviation");
   ObjectDetection objects = DetectObjects(prior, deviation, prior_index, *cad_index, hull, input, shapes, o);
   r.zones = AssessFouling(hull, inspection, objects);
   r.objects = std::move(objects.objects);
   s.seconds.objects = Since(t);
-
   r.hull = hull;
   r.keyframes = shapes;
-  s.keyframes = shapes.size();
-  for (const auto& k : shapes) {
-    s.points += k.points.size();
-    for (const auto& p : k.points) s.points_clustered += p.cluster != ShapePoint::kBelowTau;
-    s.shapes += k.shapes.size();
-    if (!k.shapes.empty()) ++s.keyframes_with_shapes;
-    for (const auto& sh : k.shapes) s.shape_triangles += sh.triangles.size();
-  }
-  s.model_vertices = r.model.num_vertices();
-  s.model_faces = r.model.num_faces();
-  for (const int c : fused.support) s.vertices_fused += c > 0;
-  s.fusion_hits = fused.hits;
-  s.hull_area = inspection.total_hull_area;
-  s.inspected_area = inspection.total_inspected_area;
-  for (const auto& z : r.zones) s.covered_area += z.covered_area;
+  CountResult(shapes, fused, inspection, r);
   s.seconds.total = Since(start);
   progress.Update(1.0, "mapped: " + std::to_string(r.objects.size()) + " objects");
   return r;
