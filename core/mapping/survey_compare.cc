@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "base/error.h"
@@ -154,6 +155,232 @@ DiscMax MaxOver(const PointIndex& at, const std::vector<double>& dev, const Eige
   return m;
 }
 
+TriangleMesh WithNormals(TriangleMesh m) {
+  m.ComputeNormals();
+  return m;
+}
+
+// Maps placed on the CAD: each vertex's foot (its closest point of the CAD
+// surface) and the CAD's normal there, with progress over every placement
+// the comparison makes.
+class CadPlacement {
+ public:
+  CadPlacement(const TriangleMesh& cad, double total, Progress& progress)
+      : cad_(WithNormals(cad)), index_(cad_), total_(total), progress_(progress) {}
+  CadPlacement(const CadPlacement&) = delete;
+  CadPlacement& operator=(const CadPlacement&) = delete;
+
+  // The feet of m's vertices placed by x (and the normals there, when asked).
+  std::vector<Eigen::Vector3d> Place(const TriangleMesh& m, const Pose& x, const char* what,
+                                     std::vector<Eigen::Vector3d>* normals) {
+    constexpr std::size_t kChunk = 4096;
+    std::vector<Eigen::Vector3d> feet(m.num_vertices());
+    if (normals) normals->resize(m.num_vertices());
+    for (std::size_t i = 0; i < feet.size(); ++i, ++done_) {
+      if (i % kChunk == 0) {
+        progress_.ThrowIfCancelled();
+        progress_.Update(static_cast<double>(done_) / total_, what);
+      }
+      const ClosestPoint c = index_.Closest(x * m.vertices[i]);
+      feet[i] = c.point;
+      if (normals) (*normals)[i] = cad_.face_normals[static_cast<std::size_t>(c.face)];
+    }
+    return feet;
+  }
+
+ private:
+  const TriangleMesh cad_;
+  const MeshIndex index_;
+  const double total_;
+  std::size_t done_ = 0;
+  Progress& progress_;
+};
+
+// One survey's map as the comparison reads it: its height field keyed by
+// where its vertices stand on the CAD (on its own placement), which object
+// each vertex belongs to, and its objects' peaks.
+struct MapSide {
+  const TriangleMesh& model;
+  const std::vector<DetectedObject>& objects;
+  const std::vector<double>& dev;
+  const std::vector<double>* sigma;
+  std::vector<Eigen::Vector3d> feet, normals;
+  std::unique_ptr<PointIndex> index;  // over feet
+  std::vector<int> object_of;
+  std::vector<Peak> peaks;
+};
+
+// A map's side. Its peaks: the highest vertex of every detected object and
+// each other local maximum of an object (no higher vertex within
+// peak_spacing). An object's change is read at its peaks, not as its max
+// height: two maps split and join touching lumps differently, and a joined
+// object's max stands on one lump only (docs/mapping.md, "Change between two
+// surveys").
+MapSide ReadSide(const TriangleMesh& model, const std::vector<DetectedObject>& objects, const std::vector<double>& dev,
+                 CadPlacement& placement, const char* what, const SurveyCompareOptions& o) {
+  MapSide s{model, objects, dev, model.FindScalar("sigma"), {}, {}, nullptr, {}, {}};
+  s.feet = placement.Place(model, Pose(), what, &s.normals);
+  s.index = std::make_unique<PointIndex>(s.feet);
+  s.object_of = ObjectOfVertex(model, objects, dev, s.feet, o.match_radius, o.change_threshold);
+  s.peaks = ObjectPeaks(dev, s.object_of, s.feet, *s.index, objects.size(), o.peak_spacing);
+  return s;
+}
+
+// B's map registered to A's by the objects' tops (their feet and the CAD's
+// normals there), one per object: a lump's top stands where it stood
+// whatever each map's object detection made of touching lumps, which moves
+// objects' centroids by decimetres (the top of an object that joins lumps
+// is one of theirs); one per object, so that the noise peaks of a flat top
+// do not outvote the objects.
+SurveyRegistration RegisterByTops(const MapSide& a, const MapSide& b, const SurveyRegistrationOptions& ro) {
+  auto tops = [](const MapSide& s) {
+    std::vector<DetectedObject> points;
+    for (const Peak& p : s.peaks) {
+      if (!p.top) continue;
+      DetectedObject t;
+      t.centroid_m = s.feet[p.vertex];
+      t.normal_m = s.normals[p.vertex];
+      points.push_back(std::move(t));
+    }
+    return points;
+  };
+  return RegisterSurveys(tops(a), tops(b), ro);
+}
+
+// The per-vertex change of B's model against A's height where B's vertex
+// stands (feet_b: on the registered placement), its sigma from both maps'
+// and whether it is significant.
+void MeasureChange(const MapSide& a, const MapSide& b, const std::vector<Eigen::Vector3d>& feet_b,
+                   const SurveyCompareOptions& o, SurveyComparison& out) {
+  const std::size_t nb = b.model.num_vertices();
+  out.model = b.model;
+  std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
+  for (std::size_t i = 0; i < nb; ++i) {
+    const auto nearest = a.index->NearestOne(feet_b[i]);
+    const std::size_t j = static_cast<std::size_t>(std::max(0, nearest.first));
+    change[i] = b.dev[i] - a.dev[j];
+    const double sa = SigmaAt(a.sigma, j), sb = SigmaAt(b.sigma, i);
+    sigma[i] = std::sqrt(sa * sa + sb * sb);
+    if (std::isfinite(sigma[i]) && std::abs(change[i]) > o.significance_k * sigma[i]) {
+      significant[i] = 1;
+      ++out.significant_vertices;
+    }
+  }
+  out.model.SetScalar("change", change);
+  out.model.SetScalar("change_sigma", sigma);
+  out.model.SetScalar("change_significant", significant);
+}
+
+// Pairs of peaks of A and B within reach of each other, closest first, each
+// peak in one pair at most: per peak, the other map's peak (-1: none).
+struct PeakPairing {
+  std::vector<int> of_a, of_b;
+};
+
+PeakPairing PairPeaks(const MapSide& a, const MapSide& b, const PointIndex& b_index, double reach) {
+  struct PeakPair {
+    double d;
+    std::size_t a, b;
+  };
+  std::vector<PeakPair> pairs;
+  std::vector<int> peak_at_b(b.model.num_vertices(), -1);
+  for (std::size_t k = 0; k < b.peaks.size(); ++k) peak_at_b[b.peaks[k].vertex] = static_cast<int>(k);
+  for (std::size_t k = 0; k < a.peaks.size(); ++k) {
+    for (const auto& hit : b_index.Within(a.feet[a.peaks[k].vertex], reach, false)) {
+      const int pb = peak_at_b[static_cast<std::size_t>(hit.first)];
+      if (pb >= 0) pairs.push_back({hit.second, k, static_cast<std::size_t>(pb)});
+    }
+  }
+  std::sort(pairs.begin(), pairs.end(), [](const PeakPair& x, const PeakPair& y) {
+    if (x.d != y.d) return x.d < y.d;
+    return x.a != y.a ? x.a < y.a : x.b < y.b;
+  });
+  PeakPairing p{std::vector<int>(a.peaks.size(), -1), std::vector<int>(b.peaks.size(), -1)};
+  for (const PeakPair& q : pairs) {
+    if (p.of_a[q.a] >= 0 || p.of_b[q.b] >= 0) continue;
+    p.of_a[q.a] = static_cast<int>(q.b);
+    p.of_b[q.b] = static_cast<int>(q.a);
+  }
+  return p;
+}
+
+// A place where the maps are compared: a peak of B (with its paired peak of
+// A, if any) or an unpaired peak of A, and the objects there.
+struct Site {
+  ObjectChange c;
+  int obj_a, obj_b;
+  std::size_t order;  // ties: the order the sites were made in
+};
+
+// The site of peak pa of A and/or pb of B (-1: none): both maps' highest
+// heights within reach of it, the objects there, and the kind of change.
+Site MakeSite(const MapSide& a, const MapSide& b, const std::vector<Eigen::Vector3d>& feet_b, const PointIndex& b_index,
+              int pa, int pb, double reach, const SurveyCompareOptions& o) {
+  const Eigen::Vector3d& at = pb >= 0 ? feet_b[b.peaks[static_cast<std::size_t>(pb)].vertex]
+                                      : a.feet[a.peaks[static_cast<std::size_t>(pa)].vertex];
+  const DiscMax ma = MaxOver(*a.index, a.dev, at, reach), mb = MaxOver(b_index, b.dev, at, reach);
+  Site s;
+  s.obj_a = pa >= 0 ? a.peaks[static_cast<std::size_t>(pa)].object : ObjectAt(a.object_of, ma.vertex);
+  s.obj_b = pb >= 0 ? b.peaks[static_cast<std::size_t>(pb)].object : ObjectAt(b.object_of, mb.vertex);
+  ObjectChange& c = s.c;
+  if (s.obj_a >= 0) c.id_a = a.objects[static_cast<std::size_t>(s.obj_a)].id;
+  if (s.obj_b >= 0) c.id_b = b.objects[static_cast<std::size_t>(s.obj_b)].id;
+  // B's peak, else B's highest vertex there where B has an object there (in
+  // B's M, like the rows with a peak of B), else A's peak (in A's M).
+  c.centroid = pb >= 0        ? b.model.vertices[b.peaks[static_cast<std::size_t>(pb)].vertex]
+               : s.obj_b >= 0 ? b.model.vertices[static_cast<std::size_t>(mb.vertex)]
+                              : a.model.vertices[a.peaks[static_cast<std::size_t>(pa)].vertex];
+  c.height_a = ma.h;
+  c.height_b = mb.h;
+  c.change = c.height_b - c.height_a;
+  if (s.obj_a < 0 && c.height_a < o.change_threshold && c.height_b >= o.change_threshold) {
+    c.kind = ObjectChangeKind::kNew;
+    c.height_a = 0;
+    c.change = c.height_b;
+  } else if (s.obj_b < 0 && c.height_b < o.change_threshold && c.height_a >= o.change_threshold) {
+    c.kind = ObjectChangeKind::kRemoved;
+    c.height_b = 0;
+    c.change = -c.height_a;
+  } else {
+    c.kind = c.change >= o.change_threshold    ? ObjectChangeKind::kGrown
+             : c.change <= -o.change_threshold ? ObjectChangeKind::kShrunk
+                                               : ObjectChangeKind::kUnchanged;
+    c.from_height_field = s.obj_a < 0 || s.obj_b < 0;
+  }
+  return s;
+}
+
+// One row per pair of objects (or object of one map) and kind: the site that
+// changed most; where an object pair has a changed site, its unchanged sites
+// are dropped.
+std::vector<ObjectChange> ChangeRows(std::vector<Site> sites) {
+  std::sort(sites.begin(), sites.end(), [](const Site& x, const Site& y) {
+    auto group = [](const Site& s) { return s.obj_b < 0 ? 2 : s.c.kind == ObjectChangeKind::kNew ? 1 : 0; };
+    if (group(x) != group(y)) return group(x) < group(y);
+    if (x.obj_b != y.obj_b) return x.obj_b < y.obj_b;
+    if (x.obj_a != y.obj_a) return x.obj_a < y.obj_a;
+    if (x.c.kind != y.c.kind) return x.c.kind < y.c.kind;
+    if (std::abs(x.c.change) != std::abs(y.c.change)) return std::abs(x.c.change) > std::abs(y.c.change);
+    const double hx = std::max(x.c.height_a, x.c.height_b), hy = std::max(y.c.height_a, y.c.height_b);
+    return hx != hy ? hx > hy : x.order < y.order;
+  });
+  std::vector<ObjectChange> rows;
+  for (std::size_t i = 0; i < sites.size(); ++i) {
+    const Site& s = sites[i];
+    if (i > 0 && sites[i - 1].obj_a == s.obj_a && sites[i - 1].obj_b == s.obj_b && sites[i - 1].c.kind == s.c.kind) {
+      continue;  // the same objects and kind, a smaller change
+    }
+    if (s.c.kind == ObjectChangeKind::kUnchanged) {
+      const bool changed_elsewhere = std::any_of(sites.begin(), sites.end(), [&](const Site& t) {
+        return t.obj_a == s.obj_a && t.obj_b == s.obj_b && t.c.kind != ObjectChangeKind::kUnchanged;
+      });
+      if (changed_elsewhere) continue;
+    }
+    rows.push_back(s.c);
+  }
+  return rows;
+}
+
 }  // namespace
 
 void SurveyCompareOptions::Check() const {
@@ -201,98 +428,22 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
   o.Check();
   const std::vector<double>& dev_a = Deviation(model_a, "A");
   const std::vector<double>& dev_b = Deviation(model_b, "B");
-  const std::vector<double>* sigma_a = model_a.FindScalar("sigma");
-  const std::vector<double>* sigma_b = model_b.FindScalar("sigma");
-  TriangleMesh cad_copy = cad;
-  cad_copy.ComputeNormals();
-  const MeshIndex index(cad_copy);
-
-  // Each height field keyed by where its vertices stand on the CAD (their
-  // feet), B's first on its own placement.
-  constexpr std::size_t kChunk = 4096;
   const std::size_t na = model_a.num_vertices(), nb = model_b.num_vertices();
-  const double total = static_cast<double>(na + 2 * nb) + 1.0;
-  std::size_t done = 0;
-  auto place = [&](const TriangleMesh& m, const Pose& x, const char* what, std::vector<Eigen::Vector3d>* normals) {
-    std::vector<Eigen::Vector3d> feet(m.num_vertices());
-    if (normals) normals->resize(m.num_vertices());
-    for (std::size_t i = 0; i < feet.size(); ++i, ++done) {
-      if (i % kChunk == 0) {
-        progress.ThrowIfCancelled();
-        progress.Update(static_cast<double>(done) / total, what);
-      }
-      const ClosestPoint c = index.Closest(x * m.vertices[i]);
-      feet[i] = c.point;
-      if (normals) (*normals)[i] = cad_copy.face_normals[static_cast<std::size_t>(c.face)];
-    }
-    return feet;
-  };
-  std::vector<Eigen::Vector3d> normals_a, normals_b;
-  const std::vector<Eigen::Vector3d> feet_a = place(model_a, Pose(), "placing survey A's model on the CAD", &normals_a);
-  const PointIndex a_index(feet_a);
-  const std::vector<Eigen::Vector3d> own_feet_b =
-      place(model_b, Pose(), "placing survey B's model on the CAD", &normals_b);
-  const PointIndex own_b_index(own_feet_b);
+  CadPlacement placement(cad, static_cast<double>(na + 2 * nb) + 1.0, progress);
+  const MapSide a = ReadSide(model_a, objects_a, dev_a, placement, "placing survey A's model on the CAD", o);
+  const MapSide b = ReadSide(model_b, objects_b, dev_b, placement, "placing survey B's model on the CAD", o);
 
-  // Each map's peaks: the highest vertex of every detected object and each
-  // other local maximum of an object (no higher vertex within peak_spacing).
-  // An object's change is read at its peaks, not as its max height: two maps
-  // split and join touching lumps differently, and a joined object's max
-  // stands on one lump only (docs/mapping.md, "Change between two surveys").
-  const std::vector<int> object_of_a =
-      ObjectOfVertex(model_a, objects_a, dev_a, feet_a, o.match_radius, o.change_threshold);
-  const std::vector<int> object_of_b =
-      ObjectOfVertex(model_b, objects_b, dev_b, own_feet_b, o.match_radius, o.change_threshold);
-  const std::vector<Peak> peaks_a = ObjectPeaks(dev_a, object_of_a, feet_a, a_index, objects_a.size(), o.peak_spacing);
-  const std::vector<Peak> peaks_b =
-      ObjectPeaks(dev_b, object_of_b, own_feet_b, own_b_index, objects_b.size(), o.peak_spacing);
-
-  // B's map registered to A's by the objects' tops (their feet and the
-  // CAD's normals there), one per object: a lump's top stands where it stood
-  // whatever each map's object detection made of touching lumps, which
-  // moves objects' centroids by decimetres (the top of an object that joins
-  // lumps is one of theirs); one per object, so that the noise peaks of a
-  // flat top do not outvote the objects.
   SurveyComparison out;
   SurveyRegistrationOptions ro;
   ro.match_radius = o.peak_spacing;
   ro.max_offset = o.max_misplacement;
-  if (o.register_surveys) {
-    auto tops = [](const std::vector<Peak>& peaks, const std::vector<Eigen::Vector3d>& feet,
-                   const std::vector<Eigen::Vector3d>& normals) {
-      std::vector<DetectedObject> points;
-      for (const Peak& p : peaks) {
-        if (!p.top) continue;
-        DetectedObject t;
-        t.centroid_m = feet[p.vertex];
-        t.normal_m = normals[p.vertex];
-        points.push_back(std::move(t));
-      }
-      return points;
-    };
-    out.registration = RegisterSurveys(tops(peaks_a, feet_a, normals_a), tops(peaks_b, own_feet_b, normals_b), ro);
-  }
+  if (o.register_surveys) out.registration = RegisterByTops(a, b, ro);
   const Pose& x_ab = out.registration.a_from_b;  // B's map placed on A's
   const std::vector<Eigen::Vector3d> feet_b =
-      out.registration.registered ? place(model_b, x_ab, "measuring the change on survey B's model", nullptr)
-                                  : own_feet_b;
+      out.registration.registered ? placement.Place(model_b, x_ab, "measuring the change on survey B's model", nullptr)
+                                  : b.feet;
   const PointIndex b_index(feet_b);
-  out.model = model_b;
-  std::vector<double> change(nb), sigma(nb), significant(nb, 0.0);
-  for (std::size_t i = 0; i < nb; ++i) {
-    const auto nearest = a_index.NearestOne(feet_b[i]);
-    const std::size_t j = static_cast<std::size_t>(std::max(0, nearest.first));
-    change[i] = dev_b[i] - dev_a[j];
-    const double sa = SigmaAt(sigma_a, j), sb = SigmaAt(sigma_b, i);
-    sigma[i] = std::sqrt(sa * sa + sb * sb);
-    if (std::isfinite(sigma[i]) && std::abs(change[i]) > o.significance_k * sigma[i]) {
-      significant[i] = 1;
-      ++out.significant_vertices;
-    }
-  }
-  out.model.SetScalar("change", change);
-  out.model.SetScalar("change_sigma", sigma);
-  out.model.SetScalar("change_significant", significant);
+  MeasureChange(a, b, feet_b, o, out);
 
   // The disc about a peak in which both maps' heights are read: the other
   // map's view of the same top may stand this far off (twice the
@@ -306,104 +457,17 @@ SurveyComparison CompareSurveys(const TriangleMesh& cad, const TriangleMesh& mod
 
   // One site per peak of B and per peak of A, a pair of peaks within reach
   // of each other (closest first) being one site.
-  struct PeakPair {
-    double d;
-    std::size_t a, b;
-  };
-  std::vector<PeakPair> pairs;
-  std::vector<int> peak_at_b(nb, -1);
-  for (std::size_t b = 0; b < peaks_b.size(); ++b) peak_at_b[peaks_b[b].vertex] = static_cast<int>(b);
-  for (std::size_t a = 0; a < peaks_a.size(); ++a) {
-    for (const auto& hit : b_index.Within(feet_a[peaks_a[a].vertex], reach, false)) {
-      const int b = peak_at_b[static_cast<std::size_t>(hit.first)];
-      if (b >= 0) pairs.push_back({hit.second, a, static_cast<std::size_t>(b)});
-    }
-  }
-  std::sort(pairs.begin(), pairs.end(), [](const PeakPair& x, const PeakPair& y) {
-    if (x.d != y.d) return x.d < y.d;
-    return x.a != y.a ? x.a < y.a : x.b < y.b;
-  });
-  std::vector<int> pair_of_a(peaks_a.size(), -1), pair_of_b(peaks_b.size(), -1);
-  for (const PeakPair& p : pairs) {
-    if (pair_of_a[p.a] >= 0 || pair_of_b[p.b] >= 0) continue;
-    pair_of_a[p.a] = static_cast<int>(p.b);
-    pair_of_b[p.b] = static_cast<int>(p.a);
-  }
-  auto classify = [&](double delta) {
-    return delta >= o.change_threshold    ? ObjectChangeKind::kGrown
-           : delta <= -o.change_threshold ? ObjectChangeKind::kShrunk
-                                          : ObjectChangeKind::kUnchanged;
-  };
-  struct Site {
-    ObjectChange c;
-    int obj_a, obj_b;
-    std::size_t order;  // ties: the order the sites were made in
-  };
+  const PeakPairing pairing = PairPeaks(a, b, b_index, reach);
   std::vector<Site> sites;
   auto add_site = [&](int pa, int pb) {
-    const Eigen::Vector3d& at = pb >= 0 ? feet_b[peaks_b[static_cast<std::size_t>(pb)].vertex]
-                                        : feet_a[peaks_a[static_cast<std::size_t>(pa)].vertex];
-    const DiscMax ma = MaxOver(a_index, dev_a, at, reach), mb = MaxOver(b_index, dev_b, at, reach);
-    Site s;
-    s.obj_a = pa >= 0 ? peaks_a[static_cast<std::size_t>(pa)].object : ObjectAt(object_of_a, ma.vertex);
-    s.obj_b = pb >= 0 ? peaks_b[static_cast<std::size_t>(pb)].object : ObjectAt(object_of_b, mb.vertex);
-    ObjectChange& c = s.c;
-    if (s.obj_a >= 0) c.id_a = objects_a[static_cast<std::size_t>(s.obj_a)].id;
-    if (s.obj_b >= 0) c.id_b = objects_b[static_cast<std::size_t>(s.obj_b)].id;
-    // B's peak, else B's highest vertex there where B has an object there
-    // (in B's M, like the rows with a peak of B), else A's peak (in A's M).
-    c.centroid = pb >= 0        ? model_b.vertices[peaks_b[static_cast<std::size_t>(pb)].vertex]
-                 : s.obj_b >= 0 ? model_b.vertices[static_cast<std::size_t>(mb.vertex)]
-                                : model_a.vertices[peaks_a[static_cast<std::size_t>(pa)].vertex];
-    c.height_a = ma.h;
-    c.height_b = mb.h;
-    c.change = c.height_b - c.height_a;
-    if (s.obj_a < 0 && c.height_a < o.change_threshold && c.height_b >= o.change_threshold) {
-      c.kind = ObjectChangeKind::kNew;
-      c.height_a = 0;
-      c.change = c.height_b;
-    } else if (s.obj_b < 0 && c.height_b < o.change_threshold && c.height_a >= o.change_threshold) {
-      c.kind = ObjectChangeKind::kRemoved;
-      c.height_b = 0;
-      c.change = -c.height_a;
-    } else {
-      c.kind = classify(c.change);
-      c.from_height_field = s.obj_a < 0 || s.obj_b < 0;
-    }
-    s.order = sites.size();
-    sites.push_back(std::move(s));
+    sites.push_back(MakeSite(a, b, feet_b, b_index, pa, pb, reach, o));
+    sites.back().order = sites.size() - 1;
   };
-  for (std::size_t b = 0; b < peaks_b.size(); ++b) add_site(pair_of_b[b], static_cast<int>(b));
-  for (std::size_t a = 0; a < peaks_a.size(); ++a) {
-    if (pair_of_a[a] < 0) add_site(static_cast<int>(a), -1);
+  for (std::size_t k = 0; k < b.peaks.size(); ++k) add_site(pairing.of_b[k], static_cast<int>(k));
+  for (std::size_t k = 0; k < a.peaks.size(); ++k) {
+    if (pairing.of_a[k] < 0) add_site(static_cast<int>(k), -1);
   }
-
-  // One row per pair of objects (or object of one map) and kind: the site
-  // that changed most; where an object pair has a changed site, its
-  // unchanged sites are dropped.
-  std::sort(sites.begin(), sites.end(), [](const Site& x, const Site& y) {
-    auto group = [](const Site& s) { return s.obj_b < 0 ? 2 : s.c.kind == ObjectChangeKind::kNew ? 1 : 0; };
-    if (group(x) != group(y)) return group(x) < group(y);
-    if (x.obj_b != y.obj_b) return x.obj_b < y.obj_b;
-    if (x.obj_a != y.obj_a) return x.obj_a < y.obj_a;
-    if (x.c.kind != y.c.kind) return x.c.kind < y.c.kind;
-    if (std::abs(x.c.change) != std::abs(y.c.change)) return std::abs(x.c.change) > std::abs(y.c.change);
-    const double hx = std::max(x.c.height_a, x.c.height_b), hy = std::max(y.c.height_a, y.c.height_b);
-    return hx != hy ? hx > hy : x.order < y.order;
-  });
-  for (std::size_t i = 0; i < sites.size(); ++i) {
-    const Site& s = sites[i];
-    if (i > 0 && sites[i - 1].obj_a == s.obj_a && sites[i - 1].obj_b == s.obj_b && sites[i - 1].c.kind == s.c.kind) {
-      continue;  // the same objects and kind, a smaller change
-    }
-    if (s.c.kind == ObjectChangeKind::kUnchanged) {
-      const bool changed_elsewhere = std::any_of(sites.begin(), sites.end(), [&](const Site& t) {
-        return t.obj_a == s.obj_a && t.obj_b == s.obj_b && t.c.kind != ObjectChangeKind::kUnchanged;
-      });
-      if (changed_elsewhere) continue;
-    }
-    out.objects.push_back(s.c);
-  }
+  out.objects = ChangeRows(std::move(sites));
   progress.Update(1.0, "compared: " + std::to_string(out.objects.size()) + " objects");
   return out;
 }
