@@ -94,65 +94,54 @@ void AlignAlong(const Eigen::MatrixXd& N, const Eigen::Vector3d& c, std::vector<
   }
 }
 
-}  // namespace
+// The adjusted landmarks that have a true one, both in M (each in its own
+// estimate of M), and the true hull landmarks with the CAD's normal there.
+struct MatchedLandmarks {
+  std::vector<const LandmarkEstimate*> est;
+  std::vector<const TrueLandmark*> truth;
+  std::vector<Eigen::Vector3d> est_m, true_m, hull_p, hull_n;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  // of true_m
+};
 
-const ObjectDeviation* AdjustmentEvaluation::Object(const std::string& id) const {
-  for (const auto& o : objects) {
-    if (o.id == id) return &o;
-  }
-  return nullptr;
-}
-
-AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, const AdjustmentResult& r) {
-  if (!b.truth) throw InputError({b.directory, 0, 0, "truth"}, "the survey has no truth/ to evaluate against");
-  const SurveyTruth& t = *b.truth;
-  AdjustmentEvaluation e;
+MatchedLandmarks MatchToTruth(const SurveyTruth& t, const TriangleMesh& mesh, const AdjustmentResult& r) {
   const Pose est_Mg = Pose::FromVector(r.x_gM).Inverse();
   const Pose true_Mg = Pose::FromVector(t.x_gM).Inverse();
   std::unordered_map<std::int64_t, const TrueLandmark*> truth;
   for (const auto& l : t.landmarks) truth[l.landmark] = &l;
-  std::map<std::string, std::pair<double, int>> per_object;
-  std::map<std::string, double> per_object_truth;
-  double s_all = 0, s_hull = 0, s_obj = 0;
-  std::size_t n_hull = 0, n_obj = 0, agree = 0;
-  std::vector<double> hull_dev;
-  // Positions in M, and the motions of M the surveyed hull leaves unobserved.
   const MeshIndex index(mesh);
-  std::vector<const LandmarkEstimate*> matched;
-  std::vector<const TrueLandmark*> matched_truth;
-  std::vector<Eigen::Vector3d> est_m, true_m, hull_p, hull_n;
-  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  MatchedLandmarks m;
   for (const auto& l : r.landmarks) {
     auto it = truth.find(l.id);
     if (it == truth.end()) continue;
-    matched.push_back(&l);
-    matched_truth.push_back(it->second);
-    est_m.push_back(est_Mg * l.p);
-    true_m.push_back(true_Mg * it->second->p);
-    centroid += true_m.back();
+    m.est.push_back(&l);
+    m.truth.push_back(it->second);
+    m.est_m.push_back(est_Mg * l.p);
+    m.true_m.push_back(true_Mg * it->second->p);
+    m.centroid += m.true_m.back();
     if (it->second->object.empty()) {
-      const ClosestPoint cp = index.Closest(true_m.back());
-      hull_p.push_back(true_m.back());
-      hull_n.push_back(mesh.face_normals[static_cast<std::size_t>(cp.face)]);
+      const ClosestPoint cp = index.Closest(m.true_m.back());
+      m.hull_p.push_back(m.true_m.back());
+      m.hull_n.push_back(mesh.face_normals[static_cast<std::size_t>(cp.face)]);
     }
   }
-  if (!true_m.empty()) centroid /= static_cast<double>(true_m.size());
-  double raw = 0;
-  for (std::size_t i = 0; i < est_m.size(); ++i) {
-    raw += (est_m[i] - true_m[i]).squaredNorm();
-    e.landmark_mean_error_raw += est_m[i] - true_m[i];
-  }
-  if (!est_m.empty()) {
-    e.landmark_rmse_raw = std::sqrt(raw / static_cast<double>(est_m.size()));
-    e.landmark_mean_error_raw /= static_cast<double>(est_m.size());
-  }
-  const Eigen::MatrixXd N = UnobservedMotions(hull_p, hull_n, centroid);
-  e.unobservable_dof = static_cast<int>(N.cols());
-  AlignAlong(N, centroid, est_m, true_m);
-  for (std::size_t i = 0; i < matched.size(); ++i) {
-    const LandmarkEstimate& l = *matched[i];
-    const TrueLandmark& tl = *matched_truth[i];
-    const double err2 = (est_m[i] - true_m[i]).squaredNorm();
+  if (!m.true_m.empty()) m.centroid /= static_cast<double>(m.true_m.size());
+  return m;
+}
+
+// Landmark errors (gauge-aligned: est_m moved along the unobserved motions
+// first), label agreement where the truth is clear (|deviation| < 2 cm or
+// > 8 cm), the hull features' offset and spread, and per true object its
+// landmarks' mean deviation against the true one.
+void ScoreLandmarks(const MatchedLandmarks& m, const SurveyTruth& t, AdjustmentEvaluation& e) {
+  double s_all = 0, s_hull = 0, s_obj = 0;
+  std::size_t n_hull = 0, n_obj = 0, agree = 0;
+  std::vector<double> hull_dev;
+  std::map<std::string, std::pair<double, int>> per_object;
+  std::map<std::string, double> per_object_truth;
+  for (std::size_t i = 0; i < m.est.size(); ++i) {
+    const LandmarkEstimate& l = *m.est[i];
+    const TrueLandmark& tl = *m.truth[i];
+    const double err2 = (m.est_m[i] - m.true_m[i]).squaredNorm();
     s_all += err2;
     ++e.landmarks;
     if (tl.object.empty()) {
@@ -192,7 +181,12 @@ AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMes
     }
     e.objects.push_back(d);
   }
-  // Vehicle positions in M.
+}
+
+// The servo angles' mean error before (navigation) and after, the camera
+// extrinsic's error before and after, and the DVL range residuals' mean,
+// spread and robust spread before and after.
+void ScoreSensors(const SurveyBundle& b, const SurveyTruth& t, const AdjustmentResult& r, AdjustmentEvaluation& e) {
   std::unordered_map<std::int64_t, const TruePose*> tp;
   for (const auto& p : t.poses) tp[p.keyframe] = &p;
   double sv0 = 0, sv1 = 0;
@@ -225,6 +219,38 @@ AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMes
   MeanStd(d1, e.dvl_mean_final, e.dvl_std_final);
   e.dvl_mad_initial = RobustSpread(d0);
   e.dvl_mad_final = RobustSpread(d1);
+}
+
+}  // namespace
+
+const ObjectDeviation* AdjustmentEvaluation::Object(const std::string& id) const {
+  for (const auto& o : objects) {
+    if (o.id == id) return &o;
+  }
+  return nullptr;
+}
+
+AdjustmentEvaluation EvaluateAdjustment(const SurveyBundle& b, const TriangleMesh& mesh, const AdjustmentResult& r) {
+  if (!b.truth) throw InputError({b.directory, 0, 0, "truth"}, "the survey has no truth/ to evaluate against");
+  const SurveyTruth& t = *b.truth;
+  AdjustmentEvaluation e;
+  MatchedLandmarks m = MatchToTruth(t, mesh, r);
+  // Raw errors, then gauge-aligned along the motions of M the surveyed hull
+  // leaves unobserved.
+  double raw = 0;
+  for (std::size_t i = 0; i < m.est_m.size(); ++i) {
+    raw += (m.est_m[i] - m.true_m[i]).squaredNorm();
+    e.landmark_mean_error_raw += m.est_m[i] - m.true_m[i];
+  }
+  if (!m.est_m.empty()) {
+    e.landmark_rmse_raw = std::sqrt(raw / static_cast<double>(m.est_m.size()));
+    e.landmark_mean_error_raw /= static_cast<double>(m.est_m.size());
+  }
+  const Eigen::MatrixXd N = UnobservedMotions(m.hull_p, m.hull_n, m.centroid);
+  e.unobservable_dof = static_cast<int>(N.cols());
+  AlignAlong(N, m.centroid, m.est_m, m.true_m);
+  ScoreLandmarks(m, t, e);
+  ScoreSensors(b, t, r, e);
   return e;
 }
 
