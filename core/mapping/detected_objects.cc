@@ -66,37 +66,31 @@ bool KeepComponent(const Component& c, const MappingInput& input, const MappingO
   return high >= o.object_min_features && static_cast<int>(c.keyframes.size()) >= o.object_min_views;
 }
 
-}  // namespace
-
-ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<double>& deviation,
-                              const PointIndex& prior_index, const MeshIndex& cad_index, const HullFrame& hull,
-                              const MappingInput& input, const std::vector<KeyframeShapes>& shapes,
-                              const MappingOptions& o) {
-  ObjectDetection out;
-  const std::size_t nz = static_cast<std::size_t>(hull.num_zones());
-  out.zone_covered_area.assign(nz, 0.0);
-  out.zone_height_integral.assign(nz, 0.0);
-  out.zone_max_height.assign(nz, 0.0);
-  out.zone_objects.assign(nz, 0);
-  const double h = o.object_min_height;
-  const int nv = static_cast<int>(prior.num_vertices());
-  auto above = [&](int v) { return deviation[static_cast<std::size_t>(v)] > h; };
-
-  // Connected regions of vertices above h_min (over the mesh's edges).
-  const VertexRegions regions = ConnectedVertexRegions(prior, above);
-  const std::vector<int>& comp_of = regions.region_of;
+// Connected regions of the prior's vertices above h_min (over the mesh's
+// edges), each with its vertices and its highest one.
+std::vector<Component> RegionsAbove(const TriangleMesh& prior, const std::vector<double>& deviation, double h,
+                                    std::vector<int>* comp_of) {
+  const VertexRegions regions =
+      ConnectedVertexRegions(prior, [&](int v) { return deviation[static_cast<std::size_t>(v)] > h; });
+  *comp_of = regions.region_of;
   std::vector<Component> comps(static_cast<std::size_t>(regions.num_regions));
-  for (int v = 0; v < nv; ++v) {
-    if (comp_of[static_cast<std::size_t>(v)] < 0) continue;
-    Component& c = comps[static_cast<std::size_t>(comp_of[static_cast<std::size_t>(v)])];
+  for (int v = 0; v < static_cast<int>(prior.num_vertices()); ++v) {
+    if ((*comp_of)[static_cast<std::size_t>(v)] < 0) continue;
+    Component& c = comps[static_cast<std::size_t>((*comp_of)[static_cast<std::size_t>(v)])];
     c.vertices.push_back(v);
     if (c.peak < 0 || deviation[static_cast<std::size_t>(v)] > c.max_height) {
       c.max_height = deviation[static_cast<std::size_t>(v)];
       c.peak = v;
     }
   }
+  return comps;
+}
 
-  // Footprints: each face clipped to where its interpolated deviation exceeds h_min.
+// Footprints: each face clipped to where its interpolated deviation exceeds
+// h_min, added to its region's area, height integral and first moment, and
+// per hull zone.
+void AddFootprints(const TriangleMesh& prior, const std::vector<double>& deviation, double h, const HullFrame& hull,
+                   const std::vector<int>& comp_of, std::vector<Component>& comps) {
   for (std::size_t f = 0; f < prior.num_faces(); ++f) {
     const Face& F = prior.faces[f];
     int comp = -1;
@@ -121,9 +115,12 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
     z.integral += m.value;
     for (const int v : F) z.max_height = std::max(z.max_height, deviation[static_cast<std::size_t>(v)]);
   }
+}
 
-  // Features over each region (nearest model vertex in the region), and
-  // the keyframes whose shapes hold them.
+// The shaped features over each region (nearest model vertex in the
+// region), and the keyframes whose shapes hold them.
+void AddFeatures(const PointIndex& prior_index, const MappingInput& input, const std::vector<KeyframeShapes>& shapes,
+                 const std::vector<int>& comp_of, std::vector<Component>& comps) {
   const Pose x_Mg = input.x_gM.Inverse();
   std::set<int> used;
   for (const auto& ks : shapes) {
@@ -148,6 +145,51 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
       }
     }
   }
+}
+
+// The object a kept region is: its place on the hull, size, heights and the
+// features and views that hold it up.
+DetectedObject MakeObject(const Component& c, const TriangleMesh& prior, const std::vector<double>& deviation,
+                          const MeshIndex& cad_index, const HullFrame& hull, const MappingInput& input) {
+  DetectedObject obj;
+  obj.id = "obj-" + std::to_string(c.object + 1);
+  obj.centroid_m = c.first / c.area;
+  const ClosestPoint cp = cad_index.Closest(obj.centroid_m);
+  obj.normal_m =
+      cp.face >= 0 ? cad_index.mesh().face_normals[static_cast<std::size_t>(cp.face)] : Eigen::Vector3d(-hull.up());
+  obj.distance_from_bow = hull.DistanceFromBow(obj.centroid_m);
+  obj.station = hull.Station(obj.centroid_m);
+  obj.side = hull.Side(obj.normal_m);
+  obj.area = c.area;
+  obj.mean_height = c.integral / c.area;
+  obj.max_height = c.max_height;
+  std::vector<double> heights;
+  for (const int v : c.vertices) heights.push_back(deviation[static_cast<std::size_t>(v)]);
+  obj.p95_height = Percentile(heights, 0.95);
+  obj.max_height_sigma = PeakSigma(c, prior, input.x_gM.Inverse(), input);
+  obj.num_features = static_cast<int>(c.landmarks.size());
+  obj.keyframes.assign(c.keyframes.begin(), c.keyframes.end());
+  obj.num_views = static_cast<int>(obj.keyframes.size());
+  obj.vertices = c.vertices;
+  return obj;
+}
+
+}  // namespace
+
+ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<double>& deviation,
+                              const PointIndex& prior_index, const MeshIndex& cad_index, const HullFrame& hull,
+                              const MappingInput& input, const std::vector<KeyframeShapes>& shapes,
+                              const MappingOptions& o) {
+  ObjectDetection out;
+  const std::size_t nz = static_cast<std::size_t>(hull.num_zones());
+  out.zone_covered_area.assign(nz, 0.0);
+  out.zone_height_integral.assign(nz, 0.0);
+  out.zone_max_height.assign(nz, 0.0);
+  out.zone_objects.assign(nz, 0);
+  std::vector<int> comp_of;
+  std::vector<Component> comps = RegionsAbove(prior, deviation, o.object_min_height, &comp_of);
+  AddFootprints(prior, deviation, o.object_min_height, hull, comp_of, comps);
+  AddFeatures(prior_index, input, shapes, comp_of, comps);
 
   // Keep the large enough ones and the small ones that enough features
   // standing above h_min, seen from enough keyframes, hold up (a tall narrow
@@ -168,27 +210,8 @@ ObjectDetection DetectObjects(const TriangleMesh& prior, const std::vector<doubl
   for (std::size_t k = 0; k < kept.size(); ++k) comps[static_cast<std::size_t>(kept[k])].object = static_cast<int>(k);
 
   for (const int i : kept) {
-    Component& c = comps[static_cast<std::size_t>(i)];
-    DetectedObject obj;
-    obj.id = "obj-" + std::to_string(c.object + 1);
-    obj.centroid_m = c.first / c.area;
-    const ClosestPoint cp = cad_index.Closest(obj.centroid_m);
-    obj.normal_m =
-        cp.face >= 0 ? cad_index.mesh().face_normals[static_cast<std::size_t>(cp.face)] : Eigen::Vector3d(-hull.up());
-    obj.distance_from_bow = hull.DistanceFromBow(obj.centroid_m);
-    obj.station = hull.Station(obj.centroid_m);
-    obj.side = hull.Side(obj.normal_m);
-    obj.area = c.area;
-    obj.mean_height = c.integral / c.area;
-    obj.max_height = c.max_height;
-    std::vector<double> heights;
-    for (const int v : c.vertices) heights.push_back(deviation[static_cast<std::size_t>(v)]);
-    obj.p95_height = Percentile(heights, 0.95);
-    obj.max_height_sigma = PeakSigma(c, prior, x_Mg, input);
-    obj.num_features = static_cast<int>(c.landmarks.size());
-    obj.keyframes.assign(c.keyframes.begin(), c.keyframes.end());
-    obj.num_views = static_cast<int>(obj.keyframes.size());
-    obj.vertices = c.vertices;
+    const Component& c = comps[static_cast<std::size_t>(i)];
+    DetectedObject obj = MakeObject(c, prior, deviation, cad_index, hull, input);
     for (const auto& [zone, z] : c.zones) {
       out.zone_covered_area[static_cast<std::size_t>(zone)] += z.area;
       out.zone_height_integral[static_cast<std::size_t>(zone)] += z.integral;
