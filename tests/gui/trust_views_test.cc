@@ -11,6 +11,7 @@
 #include <QUndoStack>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "base/progress.h"
 #include "geometry/mesh_io.h"
@@ -182,6 +183,95 @@ class TrustViewsTest : public QObject {
     QVERIFY(Significant(model, 20.0) < Significant(model, 1.96));
     const QImage strict = scene.Grab();
     QVERIFY2(DifferentPixels(significance, strict) > 0.0, "a larger k greys out no more of the model");
+  }
+
+  // Measure anywhere (issue 25): a click on the remeshed model reads the
+  // deviation, sigma and significance of the vertex under it as model.ply
+  // holds them, and the object it belongs to; a click on the CAD says where
+  // on the hull it is.
+  void pickTheRemeshedSurfaceAndTheCad() {
+    namespace fs = std::filesystem;
+    const auto& survey = MakeSyntheticSurvey();
+    const auto mapping = SyntheticMapping();
+    const fs::path folder = fs::path(OutputDir().toStdString()) / "picked-mapping";
+    hull::WriteMappingResult(*mapping->result, folder.string());
+    const hull::TriangleMesh saved = hull::LoadMesh((folder / "model.ply").string());
+    const hull::TriangleMesh& model = mapping->result->model;
+    QCOMPARE(saved.num_vertices(), model.num_vertices());
+    SceneView scene;
+    scene.setFixedSize(640, 480);
+    scene.SetMesh(survey.mesh);
+    scene.SetSurvey(survey.bundle, std::make_shared<SurveyOverlays>(ComputeSurveyOverlays(*survey.bundle)));
+    scene.SetModelPose(PlacementPose(survey.bundle.get(), ModelPlacement::kTruth));
+    scene.SetMapping(mapping);
+    SceneOptions only_model = OnlyLayer(SceneLayer::kHeatmap);
+    only_model.visible[SceneLayer::kDetectedObjects] = false;  // outlines are picked before surfaces
+    scene.SetOptions(only_model);
+    scene.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&scene));
+    LookAtTheCylinder(scene);
+    scene.Grab();
+
+    // The highest vertex of an object in view.
+    const std::vector<double>& deviation = *saved.FindScalar("deviation");
+    const hull::DetectedObject* object = nullptr;
+    int peak = -1;
+    std::optional<QPoint> at;
+    for (const hull::DetectedObject& o : mapping->result->objects) {
+      if (o.vertices.empty()) continue;
+      int top = o.vertices.front();
+      for (const int v : o.vertices) {
+        if (deviation[static_cast<std::size_t>(v)] > deviation[static_cast<std::size_t>(top)]) top = v;
+      }
+      const auto p = scene.WidgetPosition(mapping->x_gM() * model.vertices[static_cast<std::size_t>(top)]);
+      if (p && QRect(20, 20, 600, 440).contains(*p)) {
+        object = &o;
+        peak = top;
+        at = p;
+        break;
+      }
+    }
+    QVERIFY2(object, "no detected object in view");
+    const PickInfo info = scene.PickAt(*at);
+    QCOMPARE(info.kind, PickKind::kSurface);
+    QVERIFY2(info.title.startsWith(QStringLiteral("Remeshed model")), qPrintable(info.title));
+    const int picked = info.id.section(QLatin1Char(' '), -1).toInt();
+    // The click lands within a pixel of the peak: the peak or a neighbour.
+    QVERIFY((model.vertices[static_cast<std::size_t>(picked)] - model.vertices[static_cast<std::size_t>(peak)]).norm() <
+            0.05);
+    auto row = [&](const PickInfo& i, const QString& label) {
+      for (const auto& r : i.rows) {
+        if (r.first == label) return r.second;
+      }
+      return QString();
+    };
+    const double h = deviation[static_cast<std::size_t>(picked)];
+    QCOMPARE(row(info, QStringLiteral("Deviation")), QString::asprintf("%+.1f mm", h * 1000.0));
+    const double sigma = (*saved.FindScalar("sigma"))[static_cast<std::size_t>(picked)];
+    QCOMPARE(row(info, QStringLiteral("σ")), QString::asprintf("%.1f mm", sigma * 1000.0));
+    QVERIFY(row(info, QStringLiteral("Significant")).startsWith(std::abs(h) > 1.96 * sigma ? "yes" : "no"));
+    QCOMPARE(row(info, QStringLiteral("Object")), QString::fromStdString(object->id) + QStringLiteral(" (on it)"));
+    QVERIFY(row(info, QStringLiteral("Where")).contains(QStringLiteral("m from the bow, station")));
+    QVERIFY(info.position.has_value());
+
+    // The CAD: on it by definition, and where on the hull.
+    SceneOptions only_cad = only_model;
+    only_cad.visible[SceneLayer::kHeatmap] = false;
+    only_cad.visible[SceneLayer::kHull] = true;
+    scene.SetOptions(only_cad);
+    scene.Grab();
+    const PickInfo cad = scene.PickAt(*at);
+    QCOMPARE(cad.kind, PickKind::kSurface);
+    QVERIFY2(cad.title.startsWith(QStringLiteral("CAD surface")), qPrintable(cad.title));
+    QCOMPARE(row(cad, QStringLiteral("Deviation")), QStringLiteral("0 mm (the CAD itself)"));
+    QVERIFY(row(cad, QStringLiteral("Where")).contains(QStringLiteral("m from the bow")));
+
+    // No surface shown: nothing picked there.
+    SceneOptions none = only_cad;
+    none.visible[SceneLayer::kHull] = false;
+    scene.SetOptions(none);
+    scene.Grab();
+    QCOMPARE(scene.PickAt(*at).kind, PickKind::kNone);
   }
 
   void kFromTheParameterPanelWithUndo() {

@@ -1,5 +1,6 @@
 // What the info panel shows about a picked landmark, keyframe or object:
-// plain text rows built from the survey (no VTK, no widgets).
+// plain text rows built from the survey (no VTK, no widgets). Points of
+// surfaces: surface_pick.h.
 #pragma once
 
 #include <QPair>
@@ -14,7 +15,9 @@
 
 namespace hull::ui {
 
-enum class PickKind { kNone, kLandmark, kKeyframe, kObject, kDetectedObject };
+// kSurface: a point of a surface layer (remeshed model, change map, CAD;
+// ui/models/surface_pick.h).
+enum class PickKind { kNone, kLandmark, kKeyframe, kObject, kDetectedObject, kSurface };
 
 struct PickInfo {
   PickKind kind = PickKind::kNone;

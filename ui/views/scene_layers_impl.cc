@@ -56,7 +56,7 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
       p->SetAmbient(0.25);
       p->SetDiffuse(0.75);
       p->SetSpecular(0.0);
-      actor->PickableOff();
+      // Pickable: a click on the CAD reads where it is (PickSurface).
       // Landmarks, DVL hits and outlines lie on the surface: push the
       // hull's polygons back in depth so that they stay visible.
       MapperOf(actor)->SetRelativeCoincidentTopologyPolygonOffsetParameters(2.0, 8.0);
@@ -121,7 +121,7 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
       p->SetAmbient(0.35);
       p->SetDiffuse(0.7);
       p->SetSpecular(0.0);
-      actor->PickableOff();
+      // Pickable: a click reads the vertex's values (PickSurface).
       // All draw the same surface: the deviation heatmap furthest back, so
       // that a sigma, significance or change layer switched on with it wins
       // (and points and lines on the surface stay in front of them all).

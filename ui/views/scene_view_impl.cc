@@ -2,6 +2,7 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkCellPicker.h>
 #include <vtkDataArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkImageData.h>
@@ -24,6 +25,7 @@
 #include <cstring>
 
 #include "mapping/vertex_significance.h"
+#include "ui/models/surface_pick.h"
 #include "ui/views/scene_layers_impl.h"
 #include "ui/views/scene_polydata_impl.h"
 #include "ui/views/vtk_grab_impl.h"
@@ -82,6 +84,9 @@ SceneViewImpl::SceneViewImpl() {
   picker_ = vtkSmartPointer<vtkPointPicker>::New();
   picker_->SetTolerance(0.01);
   picker_->PickFromListOn();
+  surface_picker_ = vtkSmartPointer<vtkCellPicker>::New();
+  surface_picker_->SetTolerance(0.0005);
+  surface_picker_->PickFromListOn();
 
   UpdateVisibility();
 }
@@ -567,7 +572,7 @@ PickInfo SceneViewImpl::Pick(double x, double y) {
       break;
     }
   }
-  if (!actor) return info;
+  if (!actor) return PickSurface(x, y);
   const int index = static_cast<int>(id);
   if (actor == actors_[SceneLayer::kAdjustedLandmarks]) {
     info = DescribeAdjustedLandmark(*adjusted_, index);
@@ -600,6 +605,35 @@ PickInfo SceneViewImpl::Pick(double x, double y) {
     if (info.kind != PickKind::kNone) info.position = ShowSelection(x_gM_ * overlays_->objects[object].center);
   }
   return info;
+}
+
+PickInfo SceneViewImpl::PickSurface(double x, double y) {
+  for (SceneLayer layer : {SceneLayer::kHeatmap, SceneLayer::kSigmaHeatmap, SceneLayer::kSignificance,
+                           SceneLayer::kHeightChange, SceneLayer::kHull}) {
+    vtkActor* candidate = actors_[layer];
+    if (!candidate->GetVisibility()) continue;
+    surface_picker_->InitializePickList();
+    surface_picker_->AddPickList(candidate);
+    if (!surface_picker_->Pick(x, y, 0.0, renderer_) || surface_picker_->GetActor() != candidate) continue;
+    const int face = static_cast<int>(surface_picker_->GetCellId());
+    double* hit = surface_picker_->GetPickPosition();
+    const Eigen::Vector3d p_g(hit[0], hit[1], hit[2]);
+    PickInfo info;
+    if (layer == SceneLayer::kHull && mesh_) {
+      const int v = NearestCorner(*mesh_, face, x_gM_.Inverse() * p_g);
+      info = DescribeCadPoint(*mesh_, face, v, x_gM_, mapping_.get());
+    } else if (layer == SceneLayer::kHeightChange && comparison_) {
+      const TriangleMesh& model = comparison_->comparison.model;
+      info = DescribeChangePoint(*comparison_, NearestCorner(model, face, x_gM_.Inverse() * p_g), x_gM_);
+    } else if (mapping_) {
+      const TriangleMesh& model = mapping_->result->model;
+      const int v = NearestCorner(model, face, mapping_->x_gM().Inverse() * p_g);
+      info = DescribeModelPoint(*mapping_, v, significance_k_);
+    }
+    if (info.kind != PickKind::kNone) ShowSelection(*info.position);
+    return info;
+  }
+  return {};
 }
 
 Eigen::Vector3d SceneViewImpl::ShowSelection(const Eigen::Vector3d& p_g) {

@@ -24,6 +24,7 @@
 class vtkActor;
 class vtkGenericOpenGLRenderWindow;
 class vtkLookupTable;
+class vtkCellPicker;
 class vtkPointPicker;
 class vtkPolyDataMapper;
 class vtkPolyData;
@@ -99,6 +100,9 @@ class SceneViewImpl {
   void PlaceLegends();
   void UpdateFrusta();
   Eigen::Vector3d ShowSelection(const Eigen::Vector3d& p_g);  // returns p_g
+  // A point of the first visible surface layer under (x, y): the remeshed
+  // model, the change map, the CAD (kind kNone: none).
+  PickInfo PickSurface(double x, double y);
   std::pair<double, double> EffectiveRange() const;
 
   vtkSmartPointer<vtkGenericOpenGLRenderWindow> window_;
@@ -110,6 +114,7 @@ class SceneViewImpl {
   vtkSmartPointer<vtkLookupTable> sigma_lut_, change_lut_;
   vtkSmartPointer<vtkScalarBarActor> sigma_legend_, change_legend_;
   vtkSmartPointer<vtkPointPicker> picker_;
+  vtkSmartPointer<vtkCellPicker> surface_picker_;
 
   std::shared_ptr<const TriangleMesh> mesh_;
   std::shared_ptr<const SurveyBundle> bundle_;
