@@ -341,6 +341,28 @@ class InspectionTest : public QObject {
     QCOMPARE(win.w.session()->adjustment()->result->options.sigma0, 2.0);
   }
 
+  // Issue 25: cancelling the first run clears the running state; the
+  // status does not say "Adjusting…" for a run that is not coming, and a
+  // parameter change does not start one until Run.
+  void cancellingTheFirstRunLeavesTheInspectionIdle() {
+    Window win;
+    QVERIFY(QTest::qWaitForWindowExposed(&win.w));
+    win.w.OpenDemo();
+    QVERIFY(QTest::qWaitFor([&] { return !win.w.jobs()->IsBusy(); }, 240000));
+    QSignalSpy progress(win.w.jobs(), &JobRunner::jobProgress);
+    win.w.action(QStringLiteral("runInspection"))->trigger();
+    QVERIFY(win.w.jobs()->IsBusy(InspectionController::kAdjustJob));
+    QCOMPARE(win.w.inspection()->StatusText(), QStringLiteral("Adjusting…"));
+    QTRY_VERIFY_WITH_TIMEOUT(progress.count() > 0, 20000);
+    QTest::mouseClick(win.w.jobStatus()->cancelButton(), Qt::LeftButton);
+    HI_WAIT_IDLE(win.w.jobs(), 60000);
+    QVERIFY(!win.w.session()->adjustment());
+    QVERIFY2(win.w.inspection()->StatusText().isEmpty(), qPrintable(win.w.inspection()->StatusText()));
+    win.Real("sigma0")->setValue(2.0);
+    QVERIFY(!win.w.jobs()->IsBusy());
+    QVERIFY(win.errors.isEmpty());
+  }
+
   void compareModelsFillsTheCrossSectionAndTheTimePlot() {
     Window win;
     QVERIFY(win.OpenAndRun());

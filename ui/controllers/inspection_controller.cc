@@ -65,7 +65,16 @@ InspectionController::InspectionController(Session* session, JobRunner* jobs, QO
     if (active_) Update();
   });
   connect(jobs_, &JobRunner::jobStarted, this, [this] { emit stateChanged(); });
-  connect(jobs_, &JobRunner::jobCancelled, this, [this] { emit stateChanged(); });
+  connect(jobs_, &JobRunner::jobCancelled, this, [this](JobId, const QString& kind) {
+    // A run the user cancelled (nothing took its place) leaves the
+    // inspection idle: no "Adjusting…" for a run that is not coming, and no
+    // run started by the next parameter change until Run.
+    if ((kind == kAdjustJob || kind == kMapJob) && !jobs_->IsBusy(kAdjustJob) && !jobs_->IsBusy(kMapJob) &&
+        !UpToDate()) {
+      active_ = false;
+    }
+    emit stateChanged();
+  });
   connect(jobs_, &JobRunner::jobFailed, this, [this] { emit stateChanged(); });
 }
 
