@@ -21,6 +21,16 @@ std::vector<double> NiceTicks(double lo, double hi, int target) {
   return out;
 }
 
+int TickDecimals(double step) {
+  int digits = 0;
+  while (digits < 6) {
+    const double scaled = step * std::pow(10.0, digits);
+    if (std::abs(scaled - std::round(scaled)) < 1e-6 * std::max(1.0, scaled)) break;
+    ++digits;
+  }
+  return digits;
+}
+
 std::vector<double> LogTicks(double lo, double hi) {
   std::vector<double> out;
   if (!(lo > 0) || !(hi > lo)) return out;

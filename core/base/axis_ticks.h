@@ -13,6 +13,10 @@ namespace hull {
 // Empty when the interval is empty or not finite; target < 1 counts as 1.
 std::vector<double> NiceTicks(double lo, double hi, int target);
 
+// The decimals a label needs for ticks `step` apart to read exactly (0.25:
+// 2, 2.5: 1, 5: 0, 0.001: 3), at most 6.
+int TickDecimals(double step);
+
 // The powers of ten within [lo, hi] (lo > 0), for a logarithmic axis.
 std::vector<double> LogTicks(double lo, double hi);
 

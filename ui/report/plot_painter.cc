@@ -60,14 +60,7 @@ QString TickLabel(double v, double step) {
     for (const QChar c : QString::number(std::abs(e))) exponent += kSuperscript[c.digitValue()];
     return (m == 1 ? QString() : QStringLiteral("%1×").arg(m)) + QStringLiteral("10") + exponent;
   }
-  // As many decimals as the step needs to be exact (0.25: two).
-  int digits = 0;
-  while (digits < 6) {
-    const double scaled = step * std::pow(10.0, digits);
-    if (std::abs(scaled - std::round(scaled)) < 1e-6 * std::max(1.0, scaled)) break;
-    ++digits;
-  }
-  return QString::number(v, 'f', digits);
+  return QString::number(v, 'f', TickDecimals(step));  // as exact as the step (0.25: two)
 }
 
 QPointF PlotFrame::Map(double x, double y) const {

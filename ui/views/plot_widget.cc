@@ -38,8 +38,8 @@ QString TickText(double v, double step) {
   if (std::abs(v) < 1e-12 * std::max(1.0, step)) return QStringLiteral("0");
   const double a = std::abs(v);
   if (a >= 1e5 || a < 1e-3) return Scientific(v);
-  const int decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(step) - 1e-9)));
-  return QString::number(v, 'f', std::min(decimals, 4));
+  // As exact as the step, as on paper (0.25 apart: 0.25, 0.50, not 0.3, 0.5).
+  return QString::number(v, 'f', std::min(TickDecimals(step), 4));
 }
 
 // The plot's data rectangle and its axes' ranges (y transformed: log10 on a

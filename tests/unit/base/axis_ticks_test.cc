@@ -44,6 +44,15 @@ TEST(AxisTicks, EmptyOrNonFiniteIntervalsGiveNoTicks) {
   EXPECT_EQ(NiceTicks(0, 1, 0), NiceTicks(0, 1, 1));  // target < 1 counts as 1
 }
 
+TEST(AxisTicks, LabelsAreAsExactAsTheStep) {
+  EXPECT_EQ(TickDecimals(0.25), 2);  // 0.25, 0.50, 0.75: not 0.3, 0.5, 0.8
+  EXPECT_EQ(TickDecimals(2.5), 1);   // 0.0, 2.5, 5.0, 7.5: not 0, 3, 5, 8
+  EXPECT_EQ(TickDecimals(5), 0);
+  EXPECT_EQ(TickDecimals(0.2), 1);
+  EXPECT_EQ(TickDecimals(0.001), 3);
+  EXPECT_EQ(TickDecimals(1.0 / 3.0), 6);  // never more than six
+}
+
 TEST(AxisTicks, LogTicksArePowersOfTen) {
   EXPECT_EQ(LogTicks(0.5, 2000), (std::vector<double>{1, 10, 100, 1000}));
   EXPECT_TRUE(LogTicks(0, 10).empty());
