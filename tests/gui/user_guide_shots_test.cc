@@ -85,6 +85,35 @@ class UserGuideShots : public QObject {
     shoot(win.w.keyframeView(), QSize(760, 560), QStringLiteral("keyframe"));
     // The scene close to the first object (the table's selection flew there).
     QVERIFY(win.w.sceneView()->Grab().save(OutputDir() + QStringLiteral("/user_guide_object.png")));
+    // Measure anywhere: the remeshed model clicked at the first object's top.
+    const auto& mapping = win.w.session()->mapping();
+    const hull::TriangleMesh& model = mapping->result->model;
+    const hull::DetectedObject& first = mapping->result->objects.front();
+    QVERIFY(!first.vertices.empty());
+    int top = first.vertices.front();
+    for (const int v : first.vertices) {
+      if ((*model.FindScalar("deviation"))[static_cast<std::size_t>(v)] >
+          (*model.FindScalar("deviation"))[static_cast<std::size_t>(top)]) {
+        top = v;
+      }
+    }
+    // Outlines and points are picked before surfaces.
+    for (SceneLayer layer : {SceneLayer::kDetectedObjects, SceneLayer::kTruthObjects, SceneLayer::kLandmarks}) {
+      o.visible[layer] = false;
+    }
+    win.w.layersPanel()->SetOptions(o);
+    win.w.sceneView()->SetOptions(o);
+    win.w.sceneView()->Grab();
+    const auto at = win.w.sceneView()->WidgetPosition(mapping->x_gM() * model.vertices[static_cast<std::size_t>(top)]);
+    QVERIFY(at);
+    const PickInfo picked = win.w.sceneView()->PickAt(*at);
+    QVERIFY2(picked.kind == PickKind::kSurface, qPrintable(picked.title + QStringLiteral(" at %1,%2 of %3x%4")
+                                                                              .arg(at->x())
+                                                                              .arg(at->y())
+                                                                              .arg(win.w.sceneView()->width())
+                                                                              .arg(win.w.sceneView()->height())));
+    QTest::qWait(400);
+    QVERIFY(win.w.grab().toImage().save(OutputDir() + QStringLiteral("/user_guide_surface_pick.png")));
     win.w.action(QStringLiteral("openSonarDemoPrism"))->trigger();
     HI_WAIT_IDLE(win.w.jobs(), 60000);
     win.w.sonarPanel()->SetStep(12);
