@@ -99,6 +99,42 @@ class ParameterPanelTest : public QObject {
     QCOMPARE(Real(panel, "sigma1")->value(), 0.02);
   }
 
+  void aRefusedKeystrokeSaysWhy() {
+    // Typing σ₁ = 2 (its editor goes to 1 m): Qt's spin box drops the key;
+    // the panel says why, in full, and that σ₁ keeps its value.
+    ParameterPanel panel(DefaultParameterTable(), CheckDefaultParameters);
+    panel.resize(320, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    QSignalSpy changed(&panel, &ParameterPanel::parametersChanged);
+    QDoubleSpinBox* sigma1 = Real(panel, "sigma1");
+    sigma1->setFocus();
+    sigma1->selectAll();
+    QTest::keyClicks(sigma1, QStringLiteral("2"));
+    const QString error = panel.errorText(QStringLiteral("sigma1"));
+    QVERIFY2(error.contains(QStringLiteral("2 is outside [0.001, 1] m")), qPrintable(error));
+    QVERIFY2(error.contains(QStringLiteral("σ₁ (on surface) stays 0.02 m")), qPrintable(error));
+    QLabel* label = panel.findChild<QLabel*>(QStringLiteral("sigma1_error"));
+    QVERIFY(label->isVisible());
+    // The whole message fits the dock's width: wrapped, not cut.
+    QVERIFY(label->wordWrap());
+    QVERIFY(label->mapTo(&panel, QPoint(label->width(), 0)).x() <= panel.width());
+    QCOMPARE(changed.count(), 0);
+    QCOMPARE(panel.values().value(QStringLiteral("sigma1")).toDouble(), 0.02);
+    QVERIFY(panel.grab().save(hull::ui::testing::OutputDir() + QStringLiteral("/parameter_refused.png")));
+    // Not a number in an integer field.
+    QSpinBox* points = qobject_cast<QSpinBox*>(panel.editor(QStringLiteral("dbscan_min_points")));
+    points->setFocus();
+    points->selectAll();
+    QTest::keyClicks(points, QStringLiteral("x"));
+    const QString points_error = panel.errorText(QStringLiteral("dbscan_min_points"));
+    QVERIFY2(points_error.contains(QStringLiteral("is not a whole number")), qPrintable(points_error));
+    // A valid edit clears the message.
+    sigma1->setValue(0.03);
+    QVERIFY(panel.errorText(QStringLiteral("sigma1")).isEmpty());
+    QCOMPARE(changed.count(), 1);
+  }
+
   void restoreDefaultsIsOneUndoableStep() {
     ParameterPanel panel(DefaultParameterTable(), CheckDefaultParameters);
     Real(panel, "tau")->setValue(0.1);

@@ -11,9 +11,31 @@
 #include <QUndoCommand>
 #include <QUndoStack>
 #include <QVBoxLayout>
+#include <functional>
 #include <utility>
 
 namespace hull::ui {
+
+namespace {
+
+// A spin box that tells what it refused: Qt's spin boxes drop a keystroke
+// that would take the value out of their range (σ₁ = 2 with σ₁ at most
+// 1 m) without a word; this one hands the text it would have become to
+// `refused`, which shows why.
+template <typename Base>
+class RefusingSpinBox : public Base {
+ public:
+  using Base::Base;
+  std::function<void(const QString&)> refused;
+
+  QValidator::State validate(QString& text, int& pos) const override {
+    const QValidator::State state = Base::validate(text, pos);
+    if (state == QValidator::Invalid && refused) refused(text);
+    return state;
+  }
+};
+
+}  // namespace
 
 // One valid change of the parameters; consecutive changes of the same field
 // merge into one step (dragging a spin box's arrows is one undo).
@@ -59,13 +81,17 @@ ParameterPanel::ParameterPanel(ParameterTable table, ParameterValidator validato
       auto* box = new QGroupBox(d.group, content);
       form = new QFormLayout(box);
       form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+      // A narrow dock puts a field under its label rather than cutting the
+      // rows (and the error messages under them) at the dock's edge.
+      form->setRowWrapPolicy(QFormLayout::WrapLongRows);
       outer->addWidget(box);
     }
     QWidget* editor = nullptr;
     const QString key = d.key;
     switch (d.type) {
       case ParameterDescriptor::Type::kReal: {
-        auto* spin = new QDoubleSpinBox(this);
+        auto* spin = new RefusingSpinBox<QDoubleSpinBox>(this);
+        spin->refused = [this, key](const QString& text) { ShowRefused(key, text); };
         spin->setDecimals(d.decimals);
         spin->setRange(d.minimum, d.maximum);
         spin->setSingleStep(d.step);
@@ -76,7 +102,8 @@ ParameterPanel::ParameterPanel(ParameterTable table, ParameterValidator validato
         break;
       }
       case ParameterDescriptor::Type::kInteger: {
-        auto* spin = new QSpinBox(this);
+        auto* spin = new RefusingSpinBox<QSpinBox>(this);
+        spin->refused = [this, key](const QString& text) { ShowRefused(key, text); };
         spin->setRange(static_cast<int>(d.minimum), static_cast<int>(d.maximum));
         spin->setSingleStep(static_cast<int>(d.step));
         spin->setKeyboardTracking(false);
@@ -203,6 +230,14 @@ void ParameterPanel::WriteEditors(const ParameterValues& values) {
       }
     }
   }
+}
+
+void ParameterPanel::ShowRefused(const QString& key, const QString& text) {
+  const ParameterDescriptor* d = FindParameter(table_, key);
+  QLabel* label = errors_.value(key);
+  if (!d || !label) return;
+  label->setText(RefusedEntry(*d, text, values_.value(key)).message);
+  label->setVisible(true);
 }
 
 void ParameterPanel::ShowErrors(const std::vector<ParameterError>& errors) {

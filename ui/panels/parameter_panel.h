@@ -52,6 +52,8 @@ class ParameterPanel : public QWidget {
   ParameterValues ReadEditors() const;
   void WriteEditors(const ParameterValues& values);
   void ShowErrors(const std::vector<ParameterError>& errors);
+  // Why an editor refused what was typed (RefusedEntry), under the field.
+  void ShowRefused(const QString& key, const QString& text);
 
   ParameterTable table_;
   ParameterValidator validator_;

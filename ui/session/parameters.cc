@@ -1,5 +1,6 @@
 #include "ui/session/parameters.h"
 
+#include <QLocale>
 #include <cmath>
 
 namespace hull::ui {
@@ -56,6 +57,18 @@ bool CoerceValue(const ParameterDescriptor& d, const QVariant& in, QVariant* out
   return false;
 }
 
+namespace {
+
+QString OutsideRange(const ParameterDescriptor& d, double x) {
+  return QStringLiteral("%1 is outside [%2, %3]%4")
+      .arg(x)
+      .arg(d.minimum)
+      .arg(d.maximum)
+      .arg(d.unit.isEmpty() ? QString() : QStringLiteral(" ") + d.unit);
+}
+
+}  // namespace
+
 std::vector<ParameterError> CheckAgainstTable(const ParameterTable& table, const ParameterValues& values) {
   std::vector<ParameterError> errors;
   for (const ParameterDescriptor& d : table) {
@@ -74,15 +87,25 @@ std::vector<ParameterError> CheckAgainstTable(const ParameterTable& table, const
     }
     if (d.type == ParameterDescriptor::Type::kChoice) continue;
     const double x = v.toDouble();
-    if (x < d.minimum || x > d.maximum) {
-      errors.push_back({d.key, QStringLiteral("%1 is outside [%2, %3]%4")
-                                   .arg(x)
-                                   .arg(d.minimum)
-                                   .arg(d.maximum)
-                                   .arg(d.unit.isEmpty() ? QString() : QStringLiteral(" ") + d.unit)});
-    }
+    if (x < d.minimum || x > d.maximum) errors.push_back({d.key, OutsideRange(d, x)});
   }
   return errors;
+}
+
+ParameterError RefusedEntry(const ParameterDescriptor& d, const QString& text, const QVariant& in_force) {
+  QString number = text.trimmed();
+  if (!d.unit.isEmpty() && number.endsWith(d.unit)) number = number.left(number.size() - d.unit.size()).trimmed();
+  bool ok = false;
+  const double x = QLocale().toDouble(number, &ok);
+  const QString kept =
+      QStringLiteral("%1 stays %2%3").arg(d.label, in_force.toString(), d.unit.isEmpty() ? QString() : " " + d.unit);
+  if (!ok) {
+    const QString expected =
+        d.type == ParameterDescriptor::Type::kInteger ? QStringLiteral("a whole number") : QStringLiteral("a number");
+    return {d.key, QStringLiteral("“%1” is not %2; %3").arg(text.trimmed(), expected, kept)};
+  }
+  if (x < d.minimum || x > d.maximum) return {d.key, OutsideRange(d, x) + QStringLiteral("; ") + kept};
+  return {d.key, QStringLiteral("“%1” was not taken; %2").arg(text.trimmed(), kept)};
 }
 
 namespace table {

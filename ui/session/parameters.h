@@ -65,6 +65,13 @@ const ParameterDescriptor* FindParameter(const ParameterTable& table, const QStr
 // Every field present, of its type, in its range, a known choice.
 std::vector<ParameterError> CheckAgainstTable(const ParameterTable& table, const ParameterValues& values);
 
+// Why an editor refused what was typed into it (`text`: the editor's whole
+// text, the unit suffix included or not): "2 m is outside [0.001, 1] m",
+// or that it is not a number; the value in force stays, and the message says
+// so. The editors keep their values in the descriptor's range, so without
+// this a refused keystroke would vanish without a word.
+ParameterError RefusedEntry(const ParameterDescriptor& d, const QString& text, const QVariant& in_force);
+
 // CheckAgainstTable, then the values copied into the core options structs
 // and their Check() (an OptionError names the field at fault).
 std::vector<ParameterError> CheckDefaultParameters(const ParameterValues& values);
