@@ -16,7 +16,9 @@
 #include "gui_test_support.h"
 #include "ui/app/command_line.h"
 #include "ui/controllers/document_controller.h"
+#include "ui/models/deviation_histogram.h"
 #include "ui/models/pick_details.h"
+#include "ui/models/scale_bar.h"
 #include "ui/session/demo_cache.h"
 #include "ui/session/inspection_parameters.h"
 #include "ui/session/project_file.h"
@@ -65,6 +67,7 @@ void ChangeViewAsAUserWould(ProjectData* p) {
   p->scene.auto_range = false;
   p->scene.range_min = -0.02;
   p->scene.range_max = 0.2;
+  p->scene.tolerance = 0.025;
   p->scene.frustum_stride = 4;
   p->camera = CameraState{{{1.5, -2, 12.25}}, {{0.5, 0.25, 9}}, {{0, 1, 0}}, 25.0};
 }
@@ -498,6 +501,41 @@ class UiLogicTest : public QObject {
     QVERIFY(MappingKey(values) != map_key);
     values.insert(QStringLiteral("shape_seed_across_views"), QStringLiteral("on"));
     QVERIFY(MappingOptionsFrom(values).shape_seed_across_views);
+  }
+
+  void scaleBarsAreRoundAndSized() {
+    // 480 px spanning 10 m: 150 px is 3.1 m; 2 m (96 px) is nearer on a log
+    // scale than 5 m (240 px).
+    ScaleBar bar = ChooseScaleBar(10.0, 480);
+    QCOMPARE(bar.metres, 2.0);
+    QCOMPARE(bar.pixels, 96.0);
+    QCOMPARE(QString::fromStdString(bar.label), QStringLiteral("2 m"));
+    bar = ChooseScaleBar(0.4, 600);  // 150 px is 0.1 m
+    QVERIFY(std::abs(bar.metres - 0.1) < 1e-12);
+    QCOMPARE(QString::fromStdString(bar.label), QStringLiteral("0.1 m"));
+    bar = ChooseScaleBar(0.03, 400);  // 150 px is 1.125 cm: 1 cm
+    QCOMPARE(QString::fromStdString(bar.label), QStringLiteral("0.01 m"));
+    for (double span : {0.013, 0.7, 3.3, 47.0, 1234.0}) {
+      const ScaleBar b = ChooseScaleBar(span, 700);
+      QVERIFY2(b.pixels >= 94 && b.pixels <= 238, qPrintable(QString::number(b.pixels)));
+    }
+    QCOMPARE(ChooseScaleBar(0.0, 480).metres, 0.0);
+    QCOMPARE(ChooseScaleBar(5.0, 0).metres, 0.0);
+    QCOMPARE(ChooseScaleBar(std::nan(""), 480).metres, 0.0);
+  }
+
+  void deviationHistogramsCountEveryValueOnce() {
+    const std::vector<double> values = {-0.2, -0.05, -0.01, 0.0, 0.0, 0.02, 0.049, 0.05, 0.11, std::nan("")};
+    const DeviationHistogram h = ComputeDeviationHistogram(values, -0.05, 0.05, 4, 0.02);
+    QCOMPARE(h.total, 9);
+    QCOMPARE(h.below, 1);                                // -0.2
+    QCOMPARE(h.above, 1);                                // 0.11
+    QCOMPARE(h.counts, (std::vector<int>{1, 1, 3, 2}));  // 0.05 (= hi) in the last bin
+    QCOMPARE(h.within, 4);                               // -0.01, 0, 0, 0.02
+    QCOMPARE(h.max_count(), 3);
+    QVERIFY(std::abs(h.WithinFraction() - 4.0 / 9.0) < 1e-12);
+    QVERIFY(ComputeDeviationHistogram(values, 0.1, 0.1, 4, 0).counts.empty());
+    QCOMPARE(ComputeDeviationHistogram(values, -1, 1, 4, 0).within, 0);
   }
 
   void commandLine() {

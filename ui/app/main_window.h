@@ -20,6 +20,7 @@ class QAction;
 class QDockWidget;
 class QLabel;
 class QMenu;
+class QSettings;
 
 namespace hull::ui {
 
@@ -61,6 +62,11 @@ class MainWindow : public QMainWindow {
 
   // Applies the command line: --demo, or meshes, a bundle, a project.
   void Launch(const LaunchOptions& options);
+  // The window's geometry and docks as the last session left them
+  // (window_layout.h), saved there again on close; false when `settings`
+  // had none (then the docks take their default sizes). `settings` must
+  // outlive the window.
+  bool RestoreLayout(QSettings* settings);
 
   void SetErrorSink(ErrorSink sink) { error_sink_ = std::move(sink); }
   void ReportError(const QString& title, const QString& message);
@@ -149,6 +155,9 @@ class MainWindow : public QMainWindow {
   bool ConfirmForeignFolder(const QString& folder, const QString& what);
   void RebuildRecentMenu();
   void UpdatePlacement();
+  // Details after the results changed: the object shown again by its id,
+  // values of the earlier results dropped (RefreshPick).
+  void RefreshDetails();
   void UpdateTitle();
   // main_window_work.cc: unsaved work (the parameters changed, by their undo
   // stack, or results computed since the last save or open), the title's
@@ -211,6 +220,8 @@ class MainWindow : public QMainWindow {
   QAction* dock_toggles_end_ = nullptr;      // separator after the dock toggles in View
   std::vector<QWidget*> views_;              // screenshot candidates, the scene first
   std::vector<QDockWidget*> initial_docks_;  // sized once, when first shown
+  QSettings* layout_settings_ = nullptr;     // where the layout is kept (RestoreLayout)
+  bool layout_restored_ = false;             // then the docks keep their restored sizes
   QPointer<QWidget> active_view_;
   ErrorSink error_sink_;
 };

@@ -29,6 +29,7 @@
 #include "ui/panels/layers_panel.h"
 #include "ui/panels/objects_panel.h"
 #include "ui/panels/parameter_panel.h"
+#include "ui/panels/pick_info_panel.h"
 #include "ui/panels/sonar_panel.h"
 #include "ui/panels/survey_compare_panel.h"
 #include "ui/session/inspection_parameters.h"
@@ -87,6 +88,7 @@ void MainWindow::ConnectResults() {
     }
     scene_->SetAdjusted(run ? run->overlays : nullptr);
     update_runs();
+    RefreshDetails();
     UpdatePlacement();
   });
   connect(session_, &Session::modelRunsChanged, this, update_runs);
@@ -102,13 +104,16 @@ void MainWindow::ConnectResults() {
     scene_->SetMapping(mapping);
     objects_->SetMapping(mapping);
     keyframe_view_->SetMapping(mapping);
+    RefreshDetails();
     UpdatePlacement();
   });
   connect(objects_, &ObjectsPanel::objectSelected, this, [this](int index) {
     const auto& mapping = session_->mapping();
     if (!mapping) return;
     keyframe_view_->ShowObject(index);
+    scene_->HighlightObject(index);
     if (selecting_from_pick_) return;
+    pick_info_->Show(DescribeDetectedObject(*mapping, index));
     const DetectedObject& o = mapping->result->objects[index];
     scene_->FlyTo(mapping->x_gM() * o.centroid_m, 2.0 * mapping->overlays->object_radius[index]);
   });
@@ -162,6 +167,23 @@ void MainWindow::ConnectResults() {
   ConnectPanelsAndExports();
 }
 
+void MainWindow::RefreshDetails() {
+  const PickInfo& shown = pick_info_->info();
+  if (!shown.from_results) return;
+  const auto& mapping = session_->mapping();
+  const PickInfo now = RefreshPick(shown, mapping.get());
+  if (now.kind == PickKind::kNone) {
+    pick_info_->Clear(QStringLiteral("The results changed: click again for the values of those on screen."));
+    return;
+  }
+  pick_info_->Show(now);
+  const int index = mapping ? FindDetectedObject(*mapping, now.id) : -1;
+  if (index < 0) return;
+  selecting_from_pick_ = true;  // the row and the outline follow; the camera stays
+  objects_->SelectObject(index);
+  selecting_from_pick_ = false;
+}
+
 // The comparison and the photomosaic on screen: their layers, legends and panels.
 void MainWindow::ConnectSurveyLayers() {
   connect(session_, &Session::comparisonChanged, this, [this] {
@@ -178,6 +200,7 @@ void MainWindow::ConnectSurveyLayers() {
       scene_->SetOptions(o);
     }
     scene_->SetComparison(comparison);
+    RefreshDetails();
     if (comparison && !session_->survey() && !session_->mesh()) scene_->ResetCamera();
     compare_panel_->SetComparison(comparison);
     compare_dock_->show();

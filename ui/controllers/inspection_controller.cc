@@ -90,6 +90,8 @@ void InspectionController::ResetForInputs(bool keep_active) {
   map_order_.clear();
   mappers_.clear();
   mapper_order_.clear();
+  // New features of the same survey find the same objects: their ids stay.
+  if (!keep_active) object_ids_.Clear();
   active_ = active_ && keep_active;
   emit stateChanged();
 }
@@ -305,7 +307,8 @@ void InspectionController::UpdateMapping() {
   const quint64 generation = generation_;
   struct Output {
     std::shared_ptr<Mapper> mapper;
-    std::shared_ptr<const MappingRun> run;
+    std::shared_ptr<MappingResult> result;  // its objects named by object_ids_ when it arrives
+    std::shared_ptr<MappingRun> run;
   };
   jobs_->Run<Output>(
       kMapJob, QStringLiteral("Map the shapes (τ %1 m, α %2 m)").arg(options.tau).arg(options.alpha),
@@ -316,19 +319,21 @@ void InspectionController::UpdateMapping() {
           progress.Update(0.0, "preparing the mapping input");
           out.mapper = std::make_shared<Mapper>(MappingInputFromAdjustment(*result, *bundle), *cad);
         }
-        auto r = std::make_shared<const MappingResult>(out.mapper->Run(options, progress));
+        out.result = std::make_shared<MappingResult>(out.mapper->Run(options, progress));
         progress.Update(0.98, "outlining the detected objects");
-        auto run = std::make_shared<MappingRun>();
-        run->key = key;
-        run->adjustment_key = adjustment_key;
-        run->input = std::make_shared<const MappingInput>(out.mapper->input());
-        run->overlays = std::make_shared<const MappingOverlays>(ComputeMappingOverlays(*r, *cad));
-        run->result = std::move(r);
-        out.run = std::move(run);
+        out.run = std::make_shared<MappingRun>();
+        out.run->key = key;
+        out.run->adjustment_key = adjustment_key;
+        out.run->input = std::make_shared<const MappingInput>(out.mapper->input());
+        out.run->overlays = std::make_shared<const MappingOverlays>(ComputeMappingOverlays(*out.result, *cad));
         return out;
       },
       [this, generation, adjustment_key](Output& out) {
         if (generation != generation_) return;
+        // The ids of the objects seen before (here, so that runs finishing
+        // in any order name them from one record).
+        object_ids_.Assign(&out.result->objects, out.result->model);
+        out.run->result = std::move(out.result);
         if (!mappers_.count(adjustment_key)) {
           mappers_[adjustment_key] = out.mapper;
           mapper_order_.push_back(adjustment_key);

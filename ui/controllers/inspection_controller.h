@@ -15,6 +15,11 @@
 // cancelled or failed run leaves the last good result in the Session, and
 // UpToDate() turns false until the parameters are run again.
 //
+// Object ids stay with the objects across the runs of one survey
+// (ObjectIdentity, matched by position and footprint): the first run numbers
+// them from the bow aft as the command line does, later ones keep the ids of
+// the objects they find again and give new ones to the rest.
+//
 // A survey whose features come from its images (FrontEndController) runs
 // once they are there: Run() before then waits for them, and new features
 // (other front-end parameters) drop the cached results and re-run.
@@ -28,6 +33,7 @@
 #include <string>
 
 #include "mapping/mapper.h"
+#include "mapping/object_identity.h"
 #include "pipeline/pipeline.h"
 #include "ui/jobs/job_runner.h"
 #include "ui/session/inspection_results.h"
@@ -96,6 +102,9 @@ class InspectionController : public QObject {
   // A Mapper per adjustment (by its key), kept for instant re-runs.
   std::map<std::string, std::shared_ptr<Mapper>> mappers_;
   std::deque<std::string> mapper_order_;
+  // The detected objects' ids across mapping runs of this survey: an object
+  // keeps its id when tau, alpha, sigma or the thresholds change.
+  ObjectIdentity object_ids_;
 };
 
 }  // namespace hull::ui

@@ -5,6 +5,8 @@
 #include <QColor>
 #include <QStringList>
 
+#include "mapping/object_identity.h"
+
 namespace hull::ui {
 
 namespace {
@@ -86,7 +88,7 @@ QVariant ObjectsTableModel::data(const QModelIndex& index, int role) const {
   const bool sort = role == kSortRole;
   switch (index.column()) {
     case kId:
-      return sort ? QVariant(index.row()) : QVariant(QString::fromStdString(o.id));
+      return sort ? QVariant(ObjectIdNumber(o.id)) : QVariant(QString::fromStdString(o.id));
     case kFromBow:
       return sort ? QVariant(o.distance_from_bow) : QVariant(QString::number(o.distance_from_bow, 'f', 2));
     case kStation:

@@ -45,6 +45,7 @@ PickInfo DescribeAdjustedLandmark(const AdjustedOverlays& adjusted, int index) {
   if (index < 0 || index >= static_cast<int>(adjusted.landmarks.size())) return info;
   const AdjustedLandmark& l = adjusted.landmarks[index];
   info.kind = PickKind::kLandmark;
+  info.from_results = true;
   info.id = QString::number(l.id);
   info.title = QStringLiteral("Landmark %1 (adjusted)").arg(l.id);
   info.rows.append({QStringLiteral("Position (g)"), Vec3(l.position)});
@@ -69,6 +70,7 @@ PickInfo DescribeAdjustedKeyframe(const SurveyBundle& bundle, const SurveyOverla
   auto it = nav.find(adjusted.keyframes[index]);
   if (it == nav.end()) return {};
   PickInfo info = DescribeKeyframe(bundle, overlays, it->second);
+  info.from_results = true;
   const Eigen::Vector3d& p = adjusted.trajectory[index];
   info.rows.insert(2, {QStringLiteral("Position (adjusted)"), Vec3(p)});
   info.rows.insert(
@@ -109,14 +111,40 @@ PickInfo DescribeKeyframe(const SurveyBundle& bundle, const SurveyOverlays& over
   return info;
 }
 
+int FindDetectedObject(const MappingRun& mapping, const QString& id) {
+  const auto& objects = mapping.result->objects;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    if (QString::fromStdString(objects[i].id) == id) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+PickInfo RefreshPick(const PickInfo& shown, const MappingRun* mapping) {
+  if (!shown.from_results) return shown;
+  if (shown.kind != PickKind::kDetectedObject) return {};
+  const int index = mapping ? FindDetectedObject(*mapping, shown.id) : -1;
+  if (index >= 0) return DescribeDetectedObject(*mapping, index);
+  PickInfo gone;
+  gone.kind = PickKind::kDetectedObject;
+  gone.from_results = true;
+  gone.id = shown.id;
+  gone.title = QStringLiteral("Detected object %1").arg(shown.id);
+  gone.rows.append({QStringLiteral("Status"), mapping ? QStringLiteral("not detected with the parameters on screen")
+                                                      : QStringLiteral("no mapping on screen")});
+  gone.position = shown.position;
+  return gone;
+}
+
 PickInfo DescribeDetectedObject(const MappingRun& mapping, int index) {
   PickInfo info;
   const auto& objects = mapping.result->objects;
   if (index < 0 || index >= static_cast<int>(objects.size())) return info;
   const DetectedObject& o = objects[index];
   info.kind = PickKind::kDetectedObject;
+  info.from_results = true;
   info.id = QString::fromStdString(o.id);
   info.title = QStringLiteral("Detected object %1").arg(info.id);
+  info.position = mapping.x_gM() * o.centroid_m;
   info.rows.append({QStringLiteral("Where"), QStringLiteral("%1 m from the bow, station %2, %3")
                                                  .arg(o.distance_from_bow, 0, 'f', 2)
                                                  .arg(o.station)

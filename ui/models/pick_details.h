@@ -25,6 +25,11 @@ struct PickInfo {
   QString title;
   QVector<QPair<QString, QString>> rows;    // label, value
   std::optional<Eigen::Vector3d> position;  // where it is in g (set by the scene's pick)
+  // The values come from the results on screen (an adjusted landmark or
+  // keyframe, a detected object, a point of the remeshed model or of the
+  // change map), not from the survey or the CAD alone: they go when the
+  // results change (RefreshPick).
+  bool from_results = false;
 };
 
 // `index` is the landmark's position in overlays.landmarks.
@@ -42,6 +47,16 @@ PickInfo DescribeKeyframe(const SurveyBundle& bundle, const SurveyOverlays& over
 // `index` is the object's position in mapping.result->objects: where it is
 // on the hull, its footprint, heights, features and views.
 PickInfo DescribeDetectedObject(const MappingRun& mapping, int index);
+// The position of the detected object `id` in mapping.result->objects; -1
+// when that run did not find it.
+int FindDetectedObject(const MappingRun& mapping, const QString& id);
+// What Details shows for `shown` once the results on screen changed
+// (mapping: the new mapping, nullptr for none), so that it never shows
+// values of an earlier run: a detected object again by its id (ids stay with
+// the objects across runs: mapping/object_identity.h), or a line saying the
+// run did not find it; any other pick whose values came from the results is
+// dropped (kNone: pick again); picks of the survey or the CAD stay.
+PickInfo RefreshPick(const PickInfo& shown, const MappingRun* mapping);
 // `index` is the object's position in overlays.objects; x_gM places it in g.
 PickInfo DescribeObject(const SurveyBundle& bundle, const SurveyOverlays& overlays, int index, const Pose& x_gM);
 

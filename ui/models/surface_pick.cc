@@ -81,6 +81,7 @@ PickInfo DescribeModelPoint(const MappingRun& mapping, int vertex, double signif
   if (vertex < 0 || static_cast<std::size_t>(vertex) >= m.num_vertices()) return info;
   const Eigen::Vector3d& p = m.vertices[static_cast<std::size_t>(vertex)];
   info.kind = PickKind::kSurface;
+  info.from_results = true;
   info.id = QStringLiteral("model vertex %1").arg(vertex);
   info.title = QStringLiteral("Remeshed model, vertex %1").arg(vertex);
   const double h = ScalarAt(m, "deviation", vertex), sigma = ScalarAt(m, "sigma", vertex);
@@ -108,6 +109,7 @@ PickInfo DescribeChangePoint(const SurveyComparisonRun& comparison, int vertex, 
   if (vertex < 0 || static_cast<std::size_t>(vertex) >= m.num_vertices()) return info;
   const Eigen::Vector3d& p = m.vertices[static_cast<std::size_t>(vertex)];
   info.kind = PickKind::kSurface;
+  info.from_results = true;
   info.id = QStringLiteral("change vertex %1").arg(vertex);
   info.title = QStringLiteral("Change between surveys, vertex %1").arg(vertex);
   info.rows.append({QStringLiteral("Change in height"), Millimetres(ScalarAt(m, "change", vertex), true)});

@@ -70,6 +70,20 @@ LayersPanel::LayersPanel(QWidget* parent) : QWidget(parent) {
   range_max_->setObjectName(QStringLiteral("rangeMax"));
   form->addRow(QStringLiteral("Minimum"), range_min_);
   form->addRow(QStringLiteral("Maximum"), range_max_);
+  tolerance_ = new QDoubleSpinBox(style);
+  tolerance_->setObjectName(QStringLiteral("tolerance"));
+  tolerance_->setRange(0.0, 10.0);
+  tolerance_->setDecimals(3);
+  tolerance_->setSingleStep(0.005);
+  tolerance_->setSuffix(QStringLiteral(" m"));
+  tolerance_->setPrefix(QStringLiteral("± "));
+  tolerance_->setSpecialValueText(QStringLiteral("none"));
+  tolerance_->setKeyboardTracking(false);
+  tolerance_->setToolTip(
+      QStringLiteral("Deviations within ± this are drawn green (within tolerance), those beyond it in the "
+                     "deviation colours; none: the continuous map"));
+  connect(tolerance_, qOverload<double>(&QDoubleSpinBox::valueChanged), this, &LayersPanel::ReadWidgets);
+  form->addRow(QStringLiteral("Tolerance"), tolerance_);
   stride_ = new QSpinBox(style);
   stride_->setObjectName(QStringLiteral("frustumStride"));
   stride_->setRange(1, 10000);
@@ -155,6 +169,7 @@ void LayersPanel::ReadWidgets() {
       }
     }
   }
+  o.tolerance = tolerance_->value();
   o.frustum_stride = stride_->value();
   if (o == options_) return;
   options_ = o;
@@ -174,6 +189,7 @@ void LayersPanel::WriteWidgets() {
   }
   range_min_->setEnabled(!options_.auto_range);
   range_max_->setEnabled(!options_.auto_range);
+  tolerance_->setValue(options_.tolerance);
   stride_->setValue(options_.frustum_stride);
   updating_ = false;
 }

@@ -52,6 +52,7 @@ class LayersPanel : public QWidget {
   QCheckBox* auto_range_ = nullptr;
   QDoubleSpinBox* range_min_ = nullptr;
   QDoubleSpinBox* range_max_ = nullptr;
+  QDoubleSpinBox* tolerance_ = nullptr;
   QSpinBox* stride_ = nullptr;
   QComboBox* placement_ = nullptr;
   bool updating_ = false;

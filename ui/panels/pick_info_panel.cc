@@ -41,9 +41,13 @@ void PickInfoPanel::Show(const PickInfo& info) {
 }
 
 void PickInfoPanel::Clear() {
+  Clear(QStringLiteral(
+      "Click a landmark, a keyframe on the trajectory, an object outline or a surface in the 3-D view."));
+}
+
+void PickInfoPanel::Clear(const QString& why) {
   info_ = PickInfo();
-  title_->setText(
-      QStringLiteral("Click a landmark, a keyframe on the trajectory or an object outline in the 3-D view."));
+  title_->setText(why);
   rows_->clear();
   rows_->setVisible(false);
 }

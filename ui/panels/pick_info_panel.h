@@ -19,6 +19,8 @@ class PickInfoPanel : public QWidget {
 
   void Show(const PickInfo& info);
   void Clear();
+  // Clears, saying why in the title (e.g. the results changed).
+  void Clear(const QString& why);
   const PickInfo& info() const { return info_; }
   QString title() const;
   // "label: value" per row, for tests and copying.

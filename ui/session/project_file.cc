@@ -205,6 +205,10 @@ ProjectData ReadProject(const QString& path, const ParameterTable& table, const 
   p.scene.range_min = r.Number(range, range_path + QStringList{QStringLiteral("min")}, p.scene.range_min);
   p.scene.range_max = r.Number(range, range_path + QStringList{QStringLiteral("max")}, p.scene.range_max);
   if (!(p.scene.range_min < p.scene.range_max)) r.Fail(range_path, QStringLiteral("expected min < max"));
+  p.scene.tolerance = r.Number(view, {QStringLiteral("view"), QStringLiteral("tolerance")}, 0.0);
+  if (!(p.scene.tolerance >= 0 && p.scene.tolerance <= 10)) {
+    r.Fail({QStringLiteral("view"), QStringLiteral("tolerance")}, QStringLiteral("expected metres in [0, 10]"));
+  }
   const double stride = r.Number(view, {QStringLiteral("view"), QStringLiteral("frustum_stride")}, 10);
   if (stride < 1 || stride > 100000 || stride != std::floor(stride)) {
     r.Fail({QStringLiteral("view"), QStringLiteral("frustum_stride")}, QStringLiteral("expected a whole number >= 1"));
@@ -244,6 +248,7 @@ QByteArray ProjectToJson(const ProjectData& project, const QString& project_dir)
       {QStringLiteral("legend_range"), QJsonObject{{QStringLiteral("auto"), project.scene.auto_range},
                                                    {QStringLiteral("min"), project.scene.range_min},
                                                    {QStringLiteral("max"), project.scene.range_max}}},
+      {QStringLiteral("tolerance"), project.scene.tolerance},
       {QStringLiteral("frustum_stride"), project.scene.frustum_stride},
   };
   if (project.camera) {

@@ -143,7 +143,8 @@ std::map<SceneLayer, bool> SceneOptions::DefaultVisibility() {
 
 bool SceneOptions::operator==(const SceneOptions& o) const {
   return visible == o.visible && hull_edges == o.hull_edges && colouring == o.colouring && auto_range == o.auto_range &&
-         range_min == o.range_min && range_max == o.range_max && frustum_stride == o.frustum_stride;
+         range_min == o.range_min && range_max == o.range_max && tolerance == o.tolerance &&
+         frustum_stride == o.frustum_stride;
 }
 
 bool CameraState::operator==(const CameraState& o) const {

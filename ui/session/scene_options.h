@@ -48,6 +48,12 @@ enum class LandmarkColouring {
 QString ColouringKey(LandmarkColouring c);
 std::optional<LandmarkColouring> ColouringFromKey(const QString& key);
 
+// The deviation colours (RGB in [0, 1]) of a tolerance band and of values
+// beyond a manual legend range.
+constexpr double kWithinTolerance[3] = {0.20, 0.66, 0.32};
+constexpr double kAboveRange[3] = {0.95, 0.85, 0.10};
+constexpr double kBelowRange[3] = {0.10, 0.85, 0.90};
+
 struct SceneOptions {
   std::map<SceneLayer, bool> visible = DefaultVisibility();
   bool hull_edges = false;
@@ -55,6 +61,11 @@ struct SceneOptions {
   // Colour-legend range (m); auto_range uses the data's own range.
   bool auto_range = true;
   double range_min = -0.05, range_max = 0.15;
+  // Tolerance band (m; 0: none): deviations within +-tolerance drawn in one
+  // colour (green), those beyond it in the deviation colours; zero stays
+  // white whatever the range, and with a manual range the values beyond
+  // its ends are marked (above yellow, below cyan) rather than clamped.
+  double tolerance = 0;
   int frustum_stride = 10;  // a frustum at every Nth keyframe
 
   bool IsVisible(SceneLayer layer) const;

@@ -161,8 +161,8 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor) {
   }
 }
 
-vtkSmartPointer<vtkLookupTable> MakeDivergingLut() {
-  vtkNew<vtkColorTransferFunction> ctf;
+vtkSmartPointer<vtkColorTransferFunction> MakeDivergingCtf() {
+  auto ctf = vtkSmartPointer<vtkColorTransferFunction>::New();
   ctf->SetColorSpaceToRGB();
   // The report's and the glTF export's map (base/deviation_colours.h) at
   // 65 stops: the 256 entries differ from it by under 1/255.
@@ -170,7 +170,36 @@ vtkSmartPointer<vtkLookupTable> MakeDivergingLut() {
     const std::array<double, 3> rgb = DivergingRgb(i / 32.0 - 1);
     ctf->AddRGBPoint(i / 64.0, rgb[0], rgb[1], rgb[2]);
   }
-  return SampledLut(ctf);
+  return ctf;
+}
+
+vtkSmartPointer<vtkLookupTable> MakeDivergingLut() { return SampledLut(MakeDivergingCtf()); }
+
+void ShapeDeviationLut(vtkLookupTable* lut, vtkColorTransferFunction* ctf, double lo, double hi, double tolerance,
+                       bool mark_out_of_range) {
+  hi = std::max(hi, lo + 1e-6);
+  lut->SetTableRange(lo, hi);
+  // Entry i stands for x_i = lo + i (hi - lo) / 255 (its colour; over a
+  // symmetric range exactly SampledLut's) and covers the values around
+  // its centre; zero is white however asymmetric the range.
+  const double m = std::max(std::abs(lo), std::abs(hi));
+  const int n = lut->GetNumberOfTableValues();
+  for (int i = 0; i < n; ++i) {
+    const double u = i / static_cast<double>(n - 1);
+    const double centre = lo + (i + 0.5) * (hi - lo) / n;
+    double rgb[3];
+    if (tolerance > 0 && std::abs(centre) <= tolerance) {
+      rgb[0] = kWithinTolerance[0], rgb[1] = kWithinTolerance[1], rgb[2] = kWithinTolerance[2];
+    } else {
+      ctf->GetColor(0.5 * (1.0 + (lo + u * (hi - lo)) / m), rgb);
+    }
+    lut->SetTableValue(i, rgb[0], rgb[1], rgb[2], 1.0);
+  }
+  lut->SetUseAboveRangeColor(mark_out_of_range);
+  lut->SetUseBelowRangeColor(mark_out_of_range);
+  lut->SetAboveRangeColor(kAboveRange[0], kAboveRange[1], kAboveRange[2], 1.0);
+  lut->SetBelowRangeColor(kBelowRange[0], kBelowRange[1], kBelowRange[2], 1.0);
+  lut->Build();
 }
 
 vtkSmartPointer<vtkLookupTable> MakeSequentialLut() {

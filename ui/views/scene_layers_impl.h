@@ -4,6 +4,7 @@
 #pragma once
 
 #include <vtkActor.h>
+#include <vtkColorTransferFunction.h>
 #include <vtkLookupTable.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
@@ -20,6 +21,17 @@ void StyleLayerActor(SceneLayer layer, vtkActor* actor);
 // The deviation map of the report and the glTF export (ColorBrewer RdBu,
 // base/deviation_colours.h; 256 entries; NaN: mid grey).
 vtkSmartPointer<vtkLookupTable> MakeDivergingLut();
+vtkSmartPointer<vtkColorTransferFunction> MakeDivergingCtf();  // the same map over [0, 1]
+
+// Fills the deviation table for [lo, hi] from ctf (MakeDivergingCtf): zero
+// white and the colours symmetric about it whatever the range (a manual
+// range of -0.05..0.15 shows pale blue to dark red, not a shifted map);
+// tolerance > 0: the entries within +-tolerance in kWithinTolerance
+// (scene_options.h);
+// mark_out_of_range: values below lo and above hi in kBelowRange and
+// kAboveRange instead of the end colours.
+void ShapeDeviationLut(vtkLookupTable* lut, vtkColorTransferFunction* ctf, double lo, double hi, double tolerance,
+                       bool mark_out_of_range);
 // A perceptually uniform sequential map (viridis, 256 entries).
 vtkSmartPointer<vtkLookupTable> MakeSequentialLut();
 // A colour legend (hidden) in the scene's style for a lookup table.

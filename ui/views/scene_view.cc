@@ -68,6 +68,13 @@ void SceneView::SetMapping(std::shared_ptr<const MappingRun> mapping) {
   ScheduleRender();
 }
 
+void SceneView::HighlightObject(int index) {
+  impl_->HighlightObject(index);
+  ScheduleRender();
+}
+
+int SceneView::HighlightedObject() const { return impl_->HighlightedObject(); }
+
 void SceneView::SetSignificanceK(double k) {
   impl_->SetSignificanceK(k);
   ScheduleRender();
@@ -172,6 +179,12 @@ SceneView::LayerStats SceneView::Stats(SceneLayer layer) const {
 bool SceneView::LegendVisible() const { return impl_->LegendVisible(); }
 
 std::pair<double, double> SceneView::LegendRange() const { return impl_->LegendRange(); }
+
+std::array<double, 3> SceneView::DeviationColour(double deviation) const { return impl_->DeviationColour(deviation); }
+
+const ScaleBar& SceneView::CurrentScaleBar() const { return impl_->CurrentScaleBar(); }
+
+const DeviationHistogram& SceneView::LegendHistogram() const { return impl_->LegendHistogramData(); }
 
 bool SceneView::SigmaLegendVisible() const { return impl_->SigmaLegendVisible(); }
 

@@ -12,6 +12,7 @@
 #include <QPoint>
 #include <QSurfaceFormat>
 #include <QWidget>
+#include <array>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -21,7 +22,9 @@
 #include "results/compare_files.h"
 #include "survey/survey.h"
 #include "ui/models/cross_section.h"
+#include "ui/models/deviation_histogram.h"
 #include "ui/models/pick_details.h"
+#include "ui/models/scale_bar.h"
 #include "ui/session/inspection_results.h"
 #include "ui/session/mosaic_layer.h"
 #include "ui/session/scene_options.h"
@@ -55,6 +58,11 @@ class SceneView : public QWidget {
   // Mapping's fused model (heatmap), alpha shapes and detected objects
   // (nullptr removes them).
   void SetMapping(std::shared_ptr<const MappingRun> mapping);
+  // The detected object selected in the objects table (its position in the
+  // mapping's objects; -1: none): its outline drawn bold in black and the
+  // selection marker at its centroid. A new mapping or a pick clears it.
+  void HighlightObject(int index);
+  int HighlightedObject() const;
   // The significance heatmap's factor k: a vertex is coloured by its
   // deviation h where |h| > k sigma, grey elsewhere. Recomputed from the
   // model's deviation and sigma (no re-run).
@@ -93,6 +101,14 @@ class SceneView : public QWidget {
   LayerStats Stats(SceneLayer layer) const;
   bool LegendVisible() const;
   std::pair<double, double> LegendRange() const;
+  // The colour a deviation (m) is drawn in by the deviation layers (the
+  // legend's range and tolerance band in force), RGB in [0, 1].
+  std::array<double, 3> DeviationColour(double deviation) const;
+  // The scale bar as last drawn (ui/models/scale_bar.h; metres 0: none).
+  const ScaleBar& CurrentScaleBar() const;
+  // The histogram beside the deviation legend: the remeshed model's
+  // vertices over the legend's range (ui/models/deviation_histogram.h).
+  const DeviationHistogram& LegendHistogram() const;
   bool SigmaLegendVisible() const;
   std::pair<double, double> SigmaLegendRange() const;  // mm
   bool ChangeLegendVisible() const;

@@ -3,6 +3,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellPicker.h>
+#include <vtkColorTransferFunction.h>
 #include <vtkDataArray.h>
 #include <vtkGenericOpenGLRenderWindow.h>
 #include <vtkImageData.h>
@@ -26,6 +27,8 @@
 
 #include "mapping/vertex_significance.h"
 #include "ui/models/surface_pick.h"
+#include "ui/views/legend_histogram_impl.h"
+#include "ui/views/scene_guides_impl.h"
 #include "ui/views/scene_layers_impl.h"
 #include "ui/views/scene_polydata_impl.h"
 #include "ui/views/vtk_grab_impl.h"
@@ -53,6 +56,7 @@ SceneViewImpl::SceneViewImpl() {
   renderer_->SetBackground(kBackgroundBottom[0], kBackgroundBottom[1], kBackgroundBottom[2]);
   renderer_->SetBackground2(kBackgroundTop[0], kBackgroundTop[1], kBackgroundTop[2]);
   window_->AddRenderer(renderer_);
+  guides_ = std::make_unique<SceneGuides>(window_, renderer_);
 
   for (SceneLayer layer : AllSceneLayers()) {
     vtkActor* actor = AddActor();
@@ -65,14 +69,25 @@ SceneViewImpl::SceneViewImpl() {
   selection_->GetProperty()->LightingOff();
   selection_->PickableOff();
   selection_->VisibilityOff();
+  highlight_ = AddActor();
+  // Black: apart from every deviation colour and the outlines' magenta.
+  highlight_->GetProperty()->SetColor(0.0, 0.0, 0.0);
+  highlight_->GetProperty()->SetLineWidth(5.0);
+  highlight_->GetProperty()->LightingOff();
+  highlight_->PickableOff();
+  highlight_->VisibilityOff();
 
   // The report's diverging map (RdBu, near-white at zero), shared by the
   // landmark mappers, the heatmaps and the legend; NaN (not significant) is
   // grey.
   deviation_lut_ = MakeDivergingLut();
+  deviation_ctf_ = MakeDivergingCtf();
   legend_ = MakeLegend(deviation_lut_, "Deviation (m)", "%+.3f");
   legend_->SetNanAnnotation("not significant");
+  legend_->SetAboveRangeAnnotation("above");
+  legend_->SetBelowRangeAnnotation("below");
   renderer_->AddViewProp(legend_);
+  histogram_ = std::make_unique<LegendHistogram>(renderer_);
   sigma_lut_ = MakeSequentialLut();
   // VTK's embedded fonts have no Greek letters: "sigma" spelled out.
   sigma_legend_ = MakeLegend(sigma_lut_, "sigma (mm)", "%.1f");
@@ -114,6 +129,34 @@ void SceneViewImpl::SetModelPose(const Pose& x_gM) {
   actors_[SceneLayer::kHull]->SetUserMatrix(PoseMatrix(x_gM));
   actors_[SceneLayer::kHeightChange]->SetUserMatrix(PoseMatrix(x_gM));
   actors_[SceneLayer::kTruthObjects]->SetUserMatrix(PoseMatrix(x_gM));
+  UpdateGuides();
+}
+
+void SceneViewImpl::UpdateGuides() {
+  if (mapping_) {
+    const Eigen::Matrix3d R = mapping_->x_gM().rotation();
+    guides_->SetHullAxes(std::make_pair(R * mapping_->result->hull.forward(), R * mapping_->result->hull.up()));
+  } else if (bundle_ && bundle_->manifest.model_axes) {
+    const Eigen::Matrix3d R = x_gM_.rotation();
+    guides_->SetHullAxes(
+        std::make_pair(R * bundle_->manifest.model_axes->forward, R * bundle_->manifest.model_axes->up));
+  } else {
+    guides_->SetHullAxes(std::nullopt);
+  }
+}
+
+const ScaleBar& SceneViewImpl::CurrentScaleBar() const { return guides_->scale_bar(); }
+
+const DeviationHistogram& SceneViewImpl::LegendHistogramData() const { return histogram_->histogram(); }
+
+void SceneViewImpl::UpdateHistogram() {
+  constexpr int kBins = 32;
+  const std::vector<double>* deviation = mapping_ ? mapping_->result->model.FindScalar("deviation") : nullptr;
+  const auto [lo, hi] = EffectiveRange();
+  histogram_->Set(ComputeDeviationHistogram(deviation ? *deviation : std::vector<double>{}, lo, std::max(hi, lo + 1e-6),
+                                            kBins, options_.tolerance),
+                  deviation_lut_);
+  histogram_->SetVisible(deviation && HeatmapShown() && !SignificanceShown());
 }
 
 void SceneViewImpl::SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted) {
@@ -163,8 +206,20 @@ void SceneViewImpl::SetMapping(std::shared_ptr<const MappingRun> mapping) {
   }
   UpdateSignificance();
   selection_->VisibilityOff();
+  HighlightObject(-1);
+  UpdateGuides();
   UpdateLandmarkColours();
   UpdateVisibility();
+}
+
+void SceneViewImpl::HighlightObject(int index) {
+  const bool valid = mapping_ && index >= 0 && index < static_cast<int>(mapping_->result->objects.size());
+  highlighted_object_ = valid ? index : -1;
+  highlight_->SetVisibility(valid);
+  if (!valid) return;
+  SetData(highlight_, SegmentsPolyData({mapping_->overlays->object_outlines[static_cast<std::size_t>(index)]}));
+  highlight_->SetUserMatrix(PoseMatrix(mapping_->x_gM()));
+  ShowSelection(mapping_->x_gM() * mapping_->result->objects[static_cast<std::size_t>(index)].centroid_m);
 }
 
 void SceneViewImpl::SetSignificanceK(double k) {
@@ -242,6 +297,7 @@ void SceneViewImpl::SetSurvey(std::shared_ptr<const SurveyBundle> bundle,
   SetData(actors_[SceneLayer::kTruthObjects], OutlinesPolyData(o.objects));
   frusta_stride_built_ = 0;
   selection_->VisibilityOff();
+  UpdateGuides();
   UpdateLandmarkColours();
   UpdateFrusta();
   UpdateVisibility();
@@ -275,6 +331,13 @@ void SceneViewImpl::UpdateVisibility() {
   for (auto& [layer, actor] : actors_) actor->SetVisibility(options_.IsVisible(layer) && HasLayerData(layer));
   legend_->SetVisibility(LegendVisible());
   legend_->SetDrawNanAnnotation(SignificanceShown());
+  // Not under the significance map: its NaN swatch shifts the colour bar.
+  histogram_->SetVisible(HeatmapShown() && !SignificanceShown());
+  // What lies beyond a manual range: counted under the histogram, or (no
+  // histogram) the legend's own swatches.
+  const bool swatches = !options_.auto_range && !histogram_->visible();
+  legend_->SetDrawAboveRangeSwatch(swatches);
+  legend_->SetDrawBelowRangeSwatch(swatches);
   sigma_legend_->SetVisibility(SigmaLegendVisible());
   change_legend_->SetVisibility(ChangeLegendVisible());
   PlaceLegends();
@@ -282,11 +345,14 @@ void SceneViewImpl::UpdateVisibility() {
 
 void SceneViewImpl::PlaceLegends() {
   // Right to left: deviation, sigma, height change.
+  // The deviation legend's histogram takes the room of another legend, its
+  // counts under it.
+  const bool histogram = legend_->GetVisibility() && histogram_->visible();
   double x = 0.85;
   for (vtkScalarBarActor* legend : {legend_.GetPointer(), sigma_legend_.GetPointer(), change_legend_.GetPointer()}) {
     if (!legend->GetVisibility()) continue;
-    legend->GetPositionCoordinate()->SetValue(x, 0.05);
-    x -= 0.15;
+    legend->GetPositionCoordinate()->SetValue(x, histogram ? 0.13 : 0.05);
+    x -= legend == legend_.GetPointer() && histogram ? 0.30 : 0.15;
   }
 }
 
@@ -344,14 +410,22 @@ std::pair<double, double> SceneViewImpl::EffectiveRange() const {
 
 std::pair<double, double> SceneViewImpl::LegendRange() const { return EffectiveRange(); }
 
+std::array<double, 3> SceneViewImpl::DeviationColour(double deviation) const {
+  const unsigned char* rgba = deviation_lut_->MapValue(deviation);
+  return {rgba[0] / 255.0, rgba[1] / 255.0, rgba[2] / 255.0};
+}
+
 void SceneViewImpl::UpdateLandmarkColours() {
   const auto [lo, hi] = EffectiveRange();
-  deviation_lut_->SetTableRange(lo, std::max(hi, lo + 1e-6));
+  // A manual range marks what lies beyond it (an automatic one holds every value).
+  const bool manual = !options_.auto_range;
+  ShapeDeviationLut(deviation_lut_, deviation_ctf_, lo, hi, options_.tolerance, manual);
   for (SceneLayer layer : {SceneLayer::kLandmarks, SceneLayer::kAdjustedLandmarks}) {
     ColourLandmarks(MapperOf(actors_[layer]));
   }
   ColourByArray(MapperOf(actors_[SceneLayer::kHeatmap]), "deviation", deviation_lut_);
   ColourByArray(MapperOf(actors_[SceneLayer::kSignificance]), "significant_deviation", deviation_lut_);
+  UpdateHistogram();
   const auto [slo, shi] = SigmaLegendRange();
   sigma_lut_->SetTableRange(slo, shi);
   ColourByArray(MapperOf(actors_[SceneLayer::kSigmaHeatmap]), "sigma_mm", sigma_lut_);
@@ -542,6 +616,10 @@ void SceneViewImpl::WarmUp() {
 void SceneViewImpl::Render() {
   renderer_->ResetCameraClippingRange();
   window_->Render();
+  // The histogram follows the legend's colour bar, placed by the frame just drawn.
+  int bar[4];
+  legend_->GetScalarBarRect(bar, renderer_);
+  if (legend_->GetVisibility() && histogram_->Place({{bar[0], bar[1], bar[2], bar[3]}})) window_->Render();
 }
 
 QImage SceneViewImpl::Grab() {
@@ -553,6 +631,7 @@ QImage SceneViewImpl::Grab() {
 PickInfo SceneViewImpl::Pick(double x, double y) {
   PickInfo info;
   selection_->VisibilityOff();
+  HighlightObject(-1);
   if (!bundle_ || !overlays_) return info;
   // Landmarks first (adjusted, then truth), then keyframes, then objects:
   // the nearest point to the ray of the first layer that has one within the

@@ -15,7 +15,9 @@
 #include "results/compare_files.h"
 #include "survey/survey.h"
 #include "ui/models/cross_section.h"
+#include "ui/models/deviation_histogram.h"
 #include "ui/models/pick_details.h"
+#include "ui/models/scale_bar.h"
 #include "ui/session/inspection_results.h"
 #include "ui/session/mosaic_layer.h"
 #include "ui/session/scene_options.h"
@@ -23,6 +25,7 @@
 
 class vtkActor;
 class vtkGenericOpenGLRenderWindow;
+class vtkColorTransferFunction;
 class vtkLookupTable;
 class vtkCellPicker;
 class vtkPointPicker;
@@ -32,6 +35,9 @@ class vtkRenderer;
 class vtkScalarBarActor;
 
 namespace hull::ui {
+
+class LegendHistogram;
+class SceneGuides;
 
 class SceneViewImpl {
  public:
@@ -47,6 +53,8 @@ class SceneViewImpl {
   void SetSlab(const std::optional<SlabBox>& slab);
   // The fused model, alpha shapes and detected objects (nullptr removes them).
   void SetMapping(std::shared_ptr<const MappingRun> mapping);
+  void HighlightObject(int index);
+  int HighlightedObject() const { return highlighted_object_; }
   // The significance factor k of the significance heatmap (|h| > k sigma).
   void SetSignificanceK(double k);
   double significanceK() const { return significance_k_; }
@@ -78,6 +86,9 @@ class SceneViewImpl {
   long long LayerCells(SceneLayer layer) const;
   bool LegendVisible() const;
   std::pair<double, double> LegendRange() const;
+  std::array<double, 3> DeviationColour(double deviation) const;
+  const ScaleBar& CurrentScaleBar() const;  // as last drawn
+  const DeviationHistogram& LegendHistogramData() const;
   bool SigmaLegendVisible() const;
   std::pair<double, double> SigmaLegendRange() const;  // mm
   bool ChangeLegendVisible() const;
@@ -100,6 +111,11 @@ class SceneViewImpl {
   void PlaceLegends();
   void UpdateFrusta();
   Eigen::Vector3d ShowSelection(const Eigen::Vector3d& p_g);  // returns p_g
+  // The orientation axes in hull terms: the mapping's hull frame, else the
+  // survey's model axes, placed by the model pose; g's axes without either.
+  void UpdateGuides();
+  // The remeshed model's deviations over the legend's range (and tolerance).
+  void UpdateHistogram();
   // A point of the first visible surface layer under (x, y): the remeshed
   // model, the change map, the CAD (kind kNone: none).
   PickInfo PickSurface(double x, double y);
@@ -109,7 +125,12 @@ class SceneViewImpl {
   vtkSmartPointer<vtkRenderer> renderer_;
   std::map<SceneLayer, vtkSmartPointer<vtkActor>> actors_;
   vtkSmartPointer<vtkActor> selection_;
+  vtkSmartPointer<vtkActor> highlight_;         // the highlighted object's outline
+  std::unique_ptr<SceneGuides> guides_;         // orientation axes and scale bar
+  std::unique_ptr<LegendHistogram> histogram_;  // beside the deviation legend
+  int highlighted_object_ = -1;
   vtkSmartPointer<vtkLookupTable> deviation_lut_;
+  vtkSmartPointer<vtkColorTransferFunction> deviation_ctf_;  // what deviation_lut_ is filled from
   vtkSmartPointer<vtkScalarBarActor> legend_;
   vtkSmartPointer<vtkLookupTable> sigma_lut_, change_lut_;
   vtkSmartPointer<vtkScalarBarActor> sigma_legend_, change_legend_;

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "sonar/acoustic_camera.h"
+#include "ui/views/scene_guides_impl.h"
 #include "ui/views/scene_polydata_impl.h"
 #include "ui/views/vtk_grab_impl.h"
 
@@ -117,6 +118,7 @@ SonarViewImpl::SonarViewImpl() {
   renderer_->SetBackground(0.05, 0.06, 0.09);
   renderer_->SetBackground2(0.22, 0.25, 0.30);
   window_->AddRenderer(renderer_);
+  guides_ = std::make_unique<SceneGuides>(window_, renderer_);
   const double colours[kLayers][3] = {{0.2, 0.85, 0.3}, {0.3, 0.5, 1.0},    {1.0, 0.25, 0.2}, {1.0, 0.35, 0.3},
                                       {0.2, 0.85, 0.3}, {0.65, 0.65, 0.65}, {1.0, 0.3, 0.25}, {1.0, 0.65, 0.2},
                                       {0.8, 0.85, 0.9}, {0.55, 0.58, 0.62}};

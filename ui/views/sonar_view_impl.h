@@ -16,6 +16,8 @@ class vtkRenderer;
 
 namespace hull::ui {
 
+class SceneGuides;
+
 class SonarViewImpl {
  public:
   SonarViewImpl();
@@ -56,6 +58,7 @@ class SonarViewImpl {
   vtkSmartPointer<vtkGenericOpenGLRenderWindow> window_;
   vtkSmartPointer<vtkRenderer> renderer_;
   std::vector<vtkSmartPointer<vtkActor>> actors_;
+  std::unique_ptr<SceneGuides> guides_;  // orientation axes (the world's x, y, z) and scale bar
   std::shared_ptr<const SonarRun> run_;
   int step_ = 0;
   double scale_ = 1.0;
