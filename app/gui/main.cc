@@ -4,6 +4,7 @@
 // see ui/report/headless_job.h.
 #include <QApplication>
 #include <QGuiApplication>
+#include <QSettings>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -65,8 +66,14 @@ int main(int argc, char** argv) {
   hull::ui::PrepareApplication();
   QApplication app(argc, argv);
   hull::ui::InitApplication();
+  QSettings settings;  // the layout of the last session (before the window: it outlives it)
   hull::ui::MainWindow window;
-  window.show();
+  // The first start fills the screen.
+  if (window.RestoreLayout(&settings)) {
+    window.show();
+  } else {
+    window.showMaximized();
+  }
   window.Launch(options);
   return app.exec();
 }

@@ -14,6 +14,7 @@
 #include <QMimeData>
 #include <QProcess>
 #include <QPushButton>
+#include <QSettings>
 #include <QSignalSpy>
 #include <QStatusBar>
 #include <QTemporaryDir>
@@ -388,6 +389,44 @@ class MainWindowTest : public QObject {
     win.w.action(QStringLiteral("quit"))->trigger();
     QVERIFY(!asked.isEmpty());
     QTRY_VERIFY(!win.w.isVisible());
+  }
+
+  void theLayoutIsKeptAcrossSessions() {
+    // Settings of the test's own: the first window finds none, takes the
+    // default layout and leaves its own on close; the next one opens so.
+    QTemporaryDir dir;
+    QSettings settings(dir.filePath(QStringLiteral("layout.ini")), QSettings::IniFormat);
+    QDockWidget* details = nullptr;
+    QSize saved;
+    {
+      MainWindow first;
+      QVERIFY(!first.RestoreLayout(&settings));
+      first.resize(1100, 760);
+      first.show();
+      QVERIFY(QTest::qWaitForWindowExposed(&first));
+      details = first.findChild<QDockWidget*>(QStringLiteral("pickInfoPanelDock"));
+      QVERIFY(details);
+      details->hide();
+      QTest::qWait(50);
+      saved = first.size();  // at least the docks' minimum
+      QVERIFY(first.close());
+    }
+    QVERIFY(settings.contains(QStringLiteral("window/geometry")));
+    MainWindow second;
+    QVERIFY(second.RestoreLayout(&settings));
+    second.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&second));
+    QTest::qWait(50);
+    QCOMPARE(second.size(), saved);
+    QVERIFY(!second.findChild<QDockWidget*>(QStringLiteral("pickInfoPanelDock"))->isVisible());
+    QVERIFY(second.findChild<QDockWidget*>(QStringLiteral("layersPanelDock"))->isVisible());
+    // A layout of another version of the docks is not applied.
+    settings.setValue(QStringLiteral("window/state"), QByteArray("not a state"));
+    MainWindow third;
+    QVERIFY(third.RestoreLayout(&settings));  // the geometry still applies
+    third.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&third));
+    QVERIFY(third.findChild<QDockWidget*>(QStringLiteral("pickInfoPanelDock"))->isVisible());
   }
 
   void droppedFilesAndTheCommandLineOpen() {

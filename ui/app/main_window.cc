@@ -487,9 +487,11 @@ void MainWindow::showEvent(QShowEvent* event) {
   const std::vector<QDockWidget*> docks = std::move(initial_docks_);
   initial_docks_.clear();
   QTimer::singleShot(0, this, [this, docks] {
-    resizeDocks({docks[0], docks[1]}, {300, 340}, Qt::Horizontal);
-    resizeDocks({docks[1], docks[2]}, {500, 260}, Qt::Vertical);
-    resizeDocks({docks[3]}, {300}, Qt::Vertical);  // the result views under the scene
+    if (!layout_restored_) {
+      resizeDocks({docks[0], docks[1]}, {300, 340}, Qt::Horizontal);
+      resizeDocks({docks[1], docks[2]}, {500, 260}, Qt::Vertical);
+      resizeDocks({docks[3]}, {300}, Qt::Vertical);  // the result views under the scene
+    }
     PrepareResultDocks();
   });
 }

@@ -8,6 +8,7 @@
 #include <QUndoStack>
 
 #include "ui/app/main_window.h"
+#include "ui/app/window_layout.h"
 #include "ui/controllers/document_controller.h"
 #include "ui/panels/parameter_panel.h"
 #include "ui/session/session.h"
@@ -71,7 +72,14 @@ void MainWindow::closeEvent(QCloseEvent* event) {
     return;
   }
   jobs_->CancelAll();
+  if (layout_settings_) SaveWindowLayout(*this, layout_settings_);
   QMainWindow::closeEvent(event);
+}
+
+bool MainWindow::RestoreLayout(QSettings* settings) {
+  layout_settings_ = settings;
+  layout_restored_ = RestoreWindowLayout(this, settings);
+  return layout_restored_;
 }
 
 }  // namespace hull::ui
