@@ -3,6 +3,7 @@
 // files, the command line and the sorting of opened paths.
 #include <QDir>
 #include <QFile>
+#include <QSignalSpy>
 #include <QTemporaryDir>
 #include <algorithm>
 #include <cmath>
@@ -21,7 +22,9 @@
 #include "ui/models/scale_bar.h"
 #include "ui/session/demo_cache.h"
 #include "ui/session/inspection_parameters.h"
+#include "ui/session/mosaic_layer.h"
 #include "ui/session/project_file.h"
+#include "ui/session/session.h"
 
 using namespace hull::ui;
 using hull::ui::testing::LoadDemo;
@@ -501,6 +504,28 @@ class UiLogicTest : public QObject {
     QVERIFY(MappingKey(values) != map_key);
     values.insert(QStringLiteral("shape_seed_across_views"), QStringLiteral("on"));
     QVERIFY(MappingOptionsFrom(values).shape_seed_across_views);
+  }
+
+  void anotherSurveyClearsTheLayersOfThePrevious() {
+    // A comparison and a photomosaic on screen belong to the inputs open:
+    // opening another mesh or survey (or new features) drops them, as it
+    // drops the adjustment and the mapping (issue 25.5).
+    for (int input = 0; input < 2; ++input) {
+      Session session;
+      session.SetComparison(std::make_shared<hull::SurveyComparisonRun>());
+      session.SetMosaic(std::make_shared<MosaicLayer>());
+      QSignalSpy comparison(&session, &Session::comparisonChanged), mosaic(&session, &Session::mosaicChanged);
+      if (input == 0) {
+        session.SetMesh(LoadedMesh{QStringLiteral("hull.ply"), std::make_shared<hull::TriangleMesh>()});
+      } else {
+        session.SetSurvey(LoadedSurvey{QStringLiteral("survey"), std::make_shared<hull::SurveyBundle>(),
+                                       std::make_shared<SurveyOverlays>()});
+      }
+      QVERIFY(!session.comparison());
+      QVERIFY(!session.mosaic());
+      QCOMPARE(comparison.count(), 1);
+      QCOMPARE(mosaic.count(), 1);
+    }
   }
 
   void scaleBarsAreRoundAndSized() {

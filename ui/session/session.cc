@@ -113,6 +113,8 @@ void Session::SetMosaic(std::shared_ptr<const MosaicLayer> mosaic) {
 }
 
 void Session::ClearResults() {
+  SetComparison(nullptr);
+  SetMosaic(nullptr);
   SetMapping(nullptr);
   const bool had_runs = !model_runs_.empty();
   model_runs_.clear();

@@ -74,13 +74,16 @@ class Session : public QObject {
   // The mapping on screen (of the adjustment on screen, normally).
   const std::shared_ptr<const MappingRun>& mapping() const { return mapping_; }
   void SetMapping(std::shared_ptr<const MappingRun> run);
+  // Drops every result of the inputs open: the adjustments, the mapping, and
+  // the comparison and photomosaic shown with them (another mesh, survey or
+  // set of features makes them another survey's: issue 25.5).
   void ClearResults();
-  // The comparison of two surveys on screen (nullptr: none). Independent of
-  // the survey open: opening another survey keeps it.
+  // The comparison of two surveys on screen (nullptr: none); it may be
+  // shown without a survey open, and goes when one is opened.
   const std::shared_ptr<const SurveyComparisonRun>& comparison() const { return comparison_; }
   void SetComparison(std::shared_ptr<const SurveyComparisonRun> comparison);
   // The photomosaic on screen (nullptr: none), opened from a results or
-  // mosaic folder. Independent of the survey open, like the comparison.
+  // mosaic folder; like the comparison, it goes with the inputs.
   const std::shared_ptr<const MosaicLayer>& mosaic() const { return mosaic_; }
   void SetMosaic(std::shared_ptr<const MosaicLayer> mosaic);
 
