@@ -489,6 +489,12 @@ class MainWindowTest : public QObject {
     const QString panel_png = dir.filePath(QStringLiteral("parameters.png"));
     QVERIFY(win.w.SaveScreenshot(panel_png));
     QCOMPARE(QImage(panel_png).size(), win.w.parameterPanel()->size());
+    // F12 is the 3-D view whatever is active; Shift+F12 the active panel.
+    const QString scene_again = dir.filePath(QStringLiteral("scene-again.png"));
+    QVERIFY(win.w.SaveScreenshot(scene_again, win.w.sceneView()));
+    QCOMPARE(QImage(scene_again).size(), win.w.sceneView()->size());
+    QCOMPARE(win.w.action(QStringLiteral("screenshot"))->shortcut(), QKeySequence(Qt::Key_F12));
+    QCOMPARE(win.w.action(QStringLiteral("screenshotPanel"))->shortcut(), QKeySequence(Qt::SHIFT | Qt::Key_F12));
     QVERIFY(!win.w.SaveScreenshot(dir.filePath(QStringLiteral("no/such/folder/x.png"))));
     QCOMPARE(win.errors.size(), std::size_t(1));
   }
@@ -556,7 +562,7 @@ class MainWindowTest : public QObject {
     Window win;
     for (const char* name :
          {"openMesh", "openSurvey", "openProject", "saveProject", "saveProjectAs", "exportPlacedHull", "quit", "undo",
-          "redo", "resetCamera", "screenshot", "openDemo", "about"}) {
+          "redo", "resetCamera", "screenshot", "screenshotPanel", "openDemo", "about"}) {
       QVERIFY2(win.w.action(QString::fromLatin1(name)), name);
     }
     // A toggle in View for each dock.

@@ -236,9 +236,14 @@ void MainWindow::CreateMenus() {
   view_menu_->addAction(NewAction(
       QStringLiteral("resetCamera"), QStringLiteral("Reset &camera"), this, [this] { scene_->ResetCamera(); },
       QKeySequence(Qt::CTRL | Qt::Key_R)));
+  // F12 always the 3-D view (what an inspector means by a screenshot);
+  // Shift+F12 the panel last clicked.
   view_menu_->addAction(NewAction(
-      QStringLiteral("screenshot"), QStringLiteral("&Screenshot…"), this, [this] { AskScreenshot(); },
-      QKeySequence(Qt::Key_F12)));
+      QStringLiteral("screenshot"), QStringLiteral("&Screenshot of the 3-D view…"), this,
+      [this] { AskScreenshot(scene_); }, QKeySequence(Qt::Key_F12)));
+  view_menu_->addAction(NewAction(
+      QStringLiteral("screenshotPanel"), QStringLiteral("Screenshot of the active &panel…"), this,
+      [this] { AskScreenshot(active_view_ ? active_view_.data() : scene_); }, QKeySequence(Qt::SHIFT | Qt::Key_F12)));
 
   QMenu* help = menuBar()->addMenu(QStringLiteral("&Help"));
   help->addAction(NewAction(QStringLiteral("openDemo"), QStringLiteral("Open &demo"), this, [this] {
@@ -388,8 +393,8 @@ void MainWindow::SetActiveView(QWidget* view) {
   if (std::find(views_.begin(), views_.end(), view) != views_.end()) active_view_ = view;
 }
 
-bool MainWindow::SaveScreenshot(const QString& path) {
-  const QImage image = GrabActiveView();
+bool MainWindow::SaveScreenshot(const QString& path, QWidget* view) {
+  const QImage image = view ? GrabView(view) : GrabActiveView();
   if (image.isNull()) {
     ReportError(QStringLiteral("Cannot take a screenshot"), QStringLiteral("The view has not been drawn yet."));
     return false;
@@ -444,12 +449,11 @@ void MainWindow::AskExportHull() {
   if (!path.isEmpty()) documents_->ExportPlacedHull(path);
 }
 
-void MainWindow::AskScreenshot() {
-  QWidget* view = active_view_ ? active_view_.data() : scene_;
-  const QString path =
-      QFileDialog::getSaveFileName(this, QStringLiteral("Save a screenshot of the active view"),
-                                   view->objectName() + QStringLiteral(".png"), QStringLiteral("PNG images (*.png)"));
-  if (!path.isEmpty()) SaveScreenshot(path);
+void MainWindow::AskScreenshot(QWidget* view) {
+  const QString path = QFileDialog::getSaveFileName(
+      this, view == scene_ ? QStringLiteral("Save a screenshot of the 3-D view") : QStringLiteral("Save a screenshot"),
+      view->objectName() + QStringLiteral(".png"), QStringLiteral("PNG images (*.png)"));
+  if (!path.isEmpty()) SaveScreenshot(path, view);
 }
 
 void MainWindow::ShowAbout() {

@@ -75,8 +75,9 @@ class MainWindow : public QMainWindow {
   void OpenPaths(const QStringList& paths);
   void OpenDemo();
   bool SaveProject(const QString& path);
-  // PNG of the active view: the 3-D scene, or the dock that has the focus.
-  bool SaveScreenshot(const QString& path);
+  // PNG of `view`, or (nullptr) of the active view: the 3-D scene, or the
+  // dock last clicked. F12 saves the 3-D view, Shift+F12 the active one.
+  bool SaveScreenshot(const QString& path, QWidget* view = nullptr);
   // A PNG of every view (<objectName>.png) into a folder; the paths written.
   QStringList SaveAllScreenshots(const QString& directory);
   QImage GrabView(QWidget* view);
@@ -180,7 +181,7 @@ class MainWindow : public QMainWindow {
   void AskSaveProject();
   void AskSaveProjectAs();
   void AskExportHull();
-  void AskScreenshot();
+  void AskScreenshot(QWidget* view);
   void ShowAbout();
 
   Session* session_ = nullptr;
