@@ -21,6 +21,7 @@
 #include "images_survey.h"
 #include "inspection_window.h"
 #include "survey/survey_io.h"
+#include "synthetic_survey.h"
 #include "ui/controllers/front_end_controller.h"
 #include "ui/session/inspection_parameters.h"
 #include "ui/session/project_file.h"
@@ -48,6 +49,19 @@ class ImagesViewTest : public QObject {
 
  private slots:
   void initTestCase() { QVERIFY(!ImagesSurveyDir().isEmpty()); }
+
+  void aSurveyOfTracksSaysItHasNoImages() {
+    // A version 1 bundle (feature tracks, no images): not "a dropped frame".
+    const auto& survey = hull::ui::testing::MakeSyntheticSurvey();
+    ImagesView view;
+    view.resize(800, 600);
+    view.SetSurvey(survey.bundle, nullptr);
+    view.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    QVERIFY(view.keyframe() >= 0);
+    QVERIFY(view.image().isNull());
+    QVERIFY2(view.missingImageText().contains(QStringLiteral("no camera images")), qPrintable(view.missingImageText()));
+  }
 
   void openingAVersion2SurveyExtractsAndFillsTheView() {
     Window win;

@@ -105,8 +105,7 @@ class ImagesCanvas : public QWidget {
     } else {
       p.fillRect(frame, QColor(40, 46, 54));
       p.setPen(QColor(200, 200, 200));
-      p.drawText(frame, Qt::AlignCenter | Qt::TextWordWrap,
-                 view_->imageError().isEmpty() ? QStringLiteral("No image (a dropped frame)") : view_->imageError());
+      p.drawText(frame, Qt::AlignCenter | Qt::TextWordWrap, view_->missingImageText());
     }
     p.setRenderHint(QPainter::Antialiasing);
     // Pixel centres: a feature at (u, v) is drawn at (u + 0.5, v + 0.5) of the image rectangle.
@@ -368,6 +367,16 @@ void ImagesView::Refresh() {
   show_temporal_->setEnabled(!bottom_);
   legend_->setText(legendText());
   canvas_->update();
+}
+
+QString ImagesView::missingImageText() const {
+  if (!image_.isNull() || !bundle_) return {};
+  if (!image_error_.isEmpty()) return image_error_;
+  // A survey of feature tracks has no images at all: not a dropped frame.
+  if (bundle_->images && bundle_->images->present() > 0) return QStringLiteral("No image (a dropped frame)");
+  return QStringLiteral(
+      "This survey has no camera images (its features came as tracks): they are drawn on the "
+      "image frame");
 }
 
 QString ImagesView::legendText() const {

@@ -50,6 +50,9 @@ class ImagesView : public QWidget {
   const QImage& image() const { return image_; }
   QString legendText() const;
   QString imageError() const { return image_error_; }  // why the image could not be read ("" if it could)
+  // What is written where the image is missing: its read error, a dropped
+  // frame, or that the survey has no images at all ("" while one is shown).
+  QString missingImageText() const;
   QSpinBox* keyframeBox() const { return spin_; }
   QSlider* keyframeSlider() const { return slider_; }
   QComboBox* cameraBox() const { return camera_; }
