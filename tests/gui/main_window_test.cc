@@ -161,6 +161,45 @@ class MainWindowTest : public QObject {
     QVERIFY(win.w.pickInfoPanel()->title().startsWith(QStringLiteral("Keyframe")));
   }
 
+  void theDistanceToolMeasuresBetweenTwoPicks() {
+    // Measure distances on: each pick is measured from the one before (two
+    // keyframes of the demo's trajectory, their distance known).
+    Window win;
+    QVERIFY(QTest::qWaitForWindowExposed(&win.w));
+    win.w.OpenDemo();
+    HI_WAIT_IDLE(win.w.jobs(), 60000);
+    const auto& demo = LoadDemo();
+    SceneView* scene = win.w.sceneView();
+    SceneOptions o = win.w.layersPanel()->options();
+    for (SceneLayer layer : {SceneLayer::kLandmarks, SceneLayer::kTrueTrajectory, SceneLayer::kTruthObjects}) {
+      o.visible[layer] = false;
+    }
+    win.w.layersPanel()->SetOptions(o);
+    scene->SetOptions(o);
+    QTest::qWait(100);
+    scene->Grab();
+    QAction* measure = win.w.action(QStringLiteral("measureDistance"));
+    QVERIFY(measure && measure->isCheckable());
+    measure->trigger();
+    QVERIFY(measure->isChecked());
+    const PickInfo a = scene->PickAt(*scene->WidgetPosition(demo.overlays->trajectory[40]));
+    QCOMPARE(a.kind, PickKind::kKeyframe);
+    QVERIFY(!win.w.pickInfoPanel()->rowsText().join('\n').contains(QStringLiteral("Distance")));
+    const PickInfo b = scene->PickAt(*scene->WidgetPosition(demo.overlays->trajectory[80]));
+    QCOMPARE(b.kind, PickKind::kKeyframe);
+    QVERIFY(a.position && b.position);
+    const QString expected =
+        QStringLiteral("Distance from the previous pick: %1 m").arg((*b.position - *a.position).norm(), 0, 'f', 3);
+    QVERIFY2(win.w.pickInfoPanel()->rowsText().contains(expected), qPrintable(expected));
+    QVERIFY(scene->MeasurementShown());
+    QVERIFY(scene->Grab().save(hull::ui::testing::OutputDir() + QStringLiteral("/scene_distance.png")));
+    // Off: no line, no distance.
+    measure->trigger();
+    QVERIFY(!scene->MeasurementShown());
+    scene->PickAt(*scene->WidgetPosition(demo.overlays->trajectory[40]));
+    QVERIFY(!win.w.pickInfoPanel()->rowsText().join('\n').contains(QStringLiteral("Distance")));
+  }
+
   void aCancelledOpenLeavesThePreviousState() {
     Window win;
     win.w.OpenDemo();
@@ -562,7 +601,7 @@ class MainWindowTest : public QObject {
     Window win;
     for (const char* name :
          {"openMesh", "openSurvey", "openProject", "saveProject", "saveProjectAs", "exportPlacedHull", "quit", "undo",
-          "redo", "resetCamera", "screenshot", "screenshotPanel", "openDemo", "about"}) {
+          "redo", "resetCamera", "measureDistance", "screenshot", "screenshotPanel", "openDemo", "about"}) {
       QVERIFY2(win.w.action(QString::fromLatin1(name)), name);
     }
     // A toggle in View for each dock.

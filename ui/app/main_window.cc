@@ -233,6 +233,16 @@ void MainWindow::CreateMenus() {
     toggle->setObjectName(QStringLiteral("toggle_") + dock->objectName());
     view_menu_->insertAction(dock_toggles_end_, toggle);
   }
+  QAction* measure = NewAction(QStringLiteral("measureDistance"), QStringLiteral("&Measure distances"), this, [this] {
+    last_pick_.reset();
+    scene_->SetMeasurement(std::nullopt);
+  });
+  measure->setCheckable(true);
+  measure->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_M));
+  measure->setToolTip(
+      QStringLiteral("Each click in the 3-D view is measured from the one before: the distance in "
+                     "Details and a line between the two points"));
+  view_menu_->addAction(measure);
   view_menu_->addAction(NewAction(
       QStringLiteral("resetCamera"), QStringLiteral("Reset &camera"), this, [this] { scene_->ResetCamera(); },
       QKeySequence(Qt::CTRL | Qt::Key_R)));
@@ -288,7 +298,18 @@ void MainWindow::ConnectSession() {
   });
   connect(layers_, &LayersPanel::placementChosen, session_, &Session::SetPlacement);
   connect(scene_, &SceneView::picked, this, [this](const PickInfo& info) {
-    pick_info_->Show(info);
+    PickInfo shown = info;
+    // The distance tool: each pick measured from the one before.
+    if (action(QStringLiteral("measureDistance"))->isChecked() && info.position) {
+      if (last_pick_) {
+        shown = WithDistanceFrom(info, *last_pick_);
+        scene_->SetMeasurement(std::make_pair(*last_pick_, *info.position));
+        statusBar()->showMessage(QStringLiteral("Distance from the previous pick: %1 m")
+                                     .arg((*info.position - *last_pick_).norm(), 0, 'f', 3));
+      }
+      last_pick_ = info.position;
+    }
+    pick_info_->Show(shown);
     if (info.kind != PickKind::kNone) {
       if (auto* dock = qobject_cast<QDockWidget*>(pick_info_->parentWidget())) dock->raise();
     }

@@ -8,9 +8,11 @@
 // through jobs(); their results go into the Session.
 #pragma once
 
+#include <Eigen/Core>
 #include <QMainWindow>
 #include <QPointer>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "ui/app/command_line.h"
@@ -218,11 +220,12 @@ class MainWindow : public QMainWindow {
   QLabel* results_label_ = nullptr;
   QMenu* view_menu_ = nullptr;
   QMenu* recent_menu_ = nullptr;
-  QAction* dock_toggles_end_ = nullptr;      // separator after the dock toggles in View
-  std::vector<QWidget*> views_;              // screenshot candidates, the scene first
-  std::vector<QDockWidget*> initial_docks_;  // sized once, when first shown
-  QSettings* layout_settings_ = nullptr;     // where the layout is kept (RestoreLayout)
-  bool layout_restored_ = false;             // then the docks keep their restored sizes
+  QAction* dock_toggles_end_ = nullptr;       // separator after the dock toggles in View
+  std::vector<QWidget*> views_;               // screenshot candidates, the scene first
+  std::vector<QDockWidget*> initial_docks_;   // sized once, when first shown
+  QSettings* layout_settings_ = nullptr;      // where the layout is kept (RestoreLayout)
+  std::optional<Eigen::Vector3d> last_pick_;  // the distance tool's previous point (g)
+  bool layout_restored_ = false;              // then the docks keep their restored sizes
   QPointer<QWidget> active_view_;
   ErrorSink error_sink_;
 };

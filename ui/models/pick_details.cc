@@ -111,6 +111,16 @@ PickInfo DescribeKeyframe(const SurveyBundle& bundle, const SurveyOverlays& over
   return info;
 }
 
+PickInfo WithDistanceFrom(const PickInfo& info, const Eigen::Vector3d& from) {
+  if (!info.position) return info;
+  PickInfo out = info;
+  const Eigen::Vector3d d = *info.position - from;
+  out.rows.append({QStringLiteral("Distance from the previous pick"), Metres(d.norm())});
+  out.rows.append({QStringLiteral("  along x, y, z (g)"),
+                   QStringLiteral("%1, %2, %3 m").arg(d.x(), 0, 'f', 3).arg(d.y(), 0, 'f', 3).arg(d.z(), 0, 'f', 3)});
+  return out;
+}
+
 int FindDetectedObject(const MappingRun& mapping, const QString& id) {
   const auto& objects = mapping.result->objects;
   for (std::size_t i = 0; i < objects.size(); ++i) {

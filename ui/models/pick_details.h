@@ -57,6 +57,10 @@ int FindDetectedObject(const MappingRun& mapping, const QString& id);
 // run did not find it; any other pick whose values came from the results is
 // dropped (kNone: pick again); picks of the survey or the CAD stay.
 PickInfo RefreshPick(const PickInfo& shown, const MappingRun* mapping);
+// The distance tool (issue 25.1): `info` (a pick with a position) with the
+// straight distance from the previous pick `from` (g) and its components in
+// g appended; unchanged without a position.
+PickInfo WithDistanceFrom(const PickInfo& info, const Eigen::Vector3d& from);
 // `index` is the object's position in overlays.objects; x_gM places it in g.
 PickInfo DescribeObject(const SurveyBundle& bundle, const SurveyOverlays& overlays, int index, const Pose& x_gM);
 

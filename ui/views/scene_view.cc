@@ -75,6 +75,13 @@ void SceneView::HighlightObject(int index) {
 
 int SceneView::HighlightedObject() const { return impl_->HighlightedObject(); }
 
+void SceneView::SetMeasurement(const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& segment) {
+  impl_->SetMeasurement(segment);
+  ScheduleRender();
+}
+
+bool SceneView::MeasurementShown() const { return impl_->MeasurementShown(); }
+
 void SceneView::SetSignificanceK(double k) {
   impl_->SetSignificanceK(k);
   ScheduleRender();

@@ -63,6 +63,9 @@ class SceneView : public QWidget {
   // selection marker at its centroid. A new mapping or a pick clears it.
   void HighlightObject(int index);
   int HighlightedObject() const;
+  // The distance tool's line between two picks (g; nullopt: none).
+  void SetMeasurement(const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& segment);
+  bool MeasurementShown() const;
   // The significance heatmap's factor k: a vertex is coloured by its
   // deviation h where |h| > k sigma, grey elsewhere. Recomputed from the
   // model's deviation and sigma (no re-run).

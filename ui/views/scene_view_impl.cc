@@ -76,6 +76,12 @@ SceneViewImpl::SceneViewImpl() {
   highlight_->GetProperty()->LightingOff();
   highlight_->PickableOff();
   highlight_->VisibilityOff();
+  measurement_ = AddActor();
+  measurement_->GetProperty()->SetColor(1.0, 1.0, 1.0);
+  measurement_->GetProperty()->SetLineWidth(3.0);
+  measurement_->GetProperty()->LightingOff();
+  measurement_->PickableOff();
+  measurement_->VisibilityOff();
 
   // The report's diverging map (RdBu, near-white at zero), shared by the
   // landmark mappers, the heatmaps and the legend; NaN (not significant) is
@@ -221,6 +227,13 @@ void SceneViewImpl::HighlightObject(int index) {
   highlight_->SetUserMatrix(PoseMatrix(mapping_->x_gM()));
   ShowSelection(mapping_->x_gM() * mapping_->result->objects[static_cast<std::size_t>(index)].centroid_m);
 }
+
+void SceneViewImpl::SetMeasurement(const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& segment) {
+  measurement_->SetVisibility(segment.has_value());
+  if (segment) SetData(measurement_, SegmentsPolyData({{{segment->first, segment->second}}}));
+}
+
+bool SceneViewImpl::MeasurementShown() const { return measurement_->GetVisibility(); }
 
 void SceneViewImpl::SetSignificanceK(double k) {
   significance_k_ = k;

@@ -55,6 +55,8 @@ class SceneViewImpl {
   void SetMapping(std::shared_ptr<const MappingRun> mapping);
   void HighlightObject(int index);
   int HighlightedObject() const { return highlighted_object_; }
+  void SetMeasurement(const std::optional<std::pair<Eigen::Vector3d, Eigen::Vector3d>>& segment);
+  bool MeasurementShown() const;
   // The significance factor k of the significance heatmap (|h| > k sigma).
   void SetSignificanceK(double k);
   double significanceK() const { return significance_k_; }
@@ -126,6 +128,7 @@ class SceneViewImpl {
   std::map<SceneLayer, vtkSmartPointer<vtkActor>> actors_;
   vtkSmartPointer<vtkActor> selection_;
   vtkSmartPointer<vtkActor> highlight_;         // the highlighted object's outline
+  vtkSmartPointer<vtkActor> measurement_;       // the distance tool's line
   std::unique_ptr<SceneGuides> guides_;         // orientation axes and scale bar
   std::unique_ptr<LegendHistogram> histogram_;  // beside the deviation legend
   int highlighted_object_ = -1;
