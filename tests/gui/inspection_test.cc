@@ -226,8 +226,8 @@ class InspectionTest : public QObject {
     QCOMPARE(scene->Stats(SceneLayer::kAdjustedDvlHits).points, static_cast<long long>(run->overlays->dvl_hits.size()));
     QVERIFY(scene->Stats(SceneLayer::kAdjustedLandmarks).visible);
     QCOMPARE(win.w.session()->placement(), ModelPlacement::kAdjusted);
-    QVERIFY(win.w.placementLabel()->text().contains(QStringLiteral("bundle adjustment")));
-    QVERIFY(win.w.resultsLabel()->text().contains(QStringLiteral("max-mixture")));
+    QVERIFY(win.w.placementLabel()->fullText().contains(QStringLiteral("bundle adjustment")));
+    QVERIFY(win.w.resultsLabel()->fullText().contains(QStringLiteral("max-mixture")));
     QVERIFY(win.w.action(QStringLiteral("compareModels"))->isEnabled());
 
     // Mapping followed: the heatmap replaces the plain hull, the objects
@@ -396,8 +396,8 @@ class InspectionTest : public QObject {
     QCOMPARE(win.w.session()->adjustment(), good);
     QCOMPARE(win.w.sceneView()->Stats(SceneLayer::kAdjustedLandmarks).points, landmarks);
     QVERIFY(!win.w.inspection()->UpToDate());
-    QVERIFY2(win.w.resultsLabel()->text().contains(QStringLiteral("Run to update")),
-             qPrintable(win.w.resultsLabel()->text()));
+    QVERIFY2(win.w.resultsLabel()->fullText().contains(QStringLiteral("Run to update")),
+             qPrintable(win.w.resultsLabel()->fullText()));
     QVERIFY(win.errors.isEmpty());
     // Run brings the results up to date.
     win.w.action(QStringLiteral("runInspection"))->trigger();

@@ -28,6 +28,7 @@
 #include "ui/app/main_window.h"
 #include "ui/controllers/document_controller.h"
 #include "ui/jobs/job_status_widget.h"
+#include "ui/jobs/status_label.h"
 #include "ui/panels/layers_panel.h"
 #include "ui/panels/parameter_panel.h"
 #include "ui/panels/pick_info_panel.h"
@@ -91,7 +92,7 @@ class MainWindowTest : public QObject {
             static_cast<long long>(demo.bundle->truth->objects.size()));
     QVERIFY(!scene->Stats(SceneLayer::kFrusta).present);  // on demand
     QVERIFY(!scene->LegendVisible());
-    QVERIFY(win.w.placementLabel()->text().contains(QStringLiteral("ground truth")));
+    QVERIFY(win.w.placementLabel()->fullText().contains(QStringLiteral("ground truth")));
     QVERIFY(win.w.surveyPanel()->rowsText().join('\n').contains(
         QStringLiteral("Keyframes: %1").arg(demo.bundle->nav.size())));
 
@@ -111,7 +112,7 @@ class MainWindowTest : public QObject {
     auto* placement = win.w.layersPanel()->placementBox();
     placement->setCurrentIndex(placement->findData(QStringLiteral("guess")));
     QCOMPARE(win.w.session()->placement(), ModelPlacement::kGuess);
-    QVERIFY(win.w.placementLabel()->text().contains(QStringLiteral("model_pose_guess")));
+    QVERIFY(win.w.placementLabel()->fullText().contains(QStringLiteral("model_pose_guess")));
   }
 
   void pickingALandmarkShowsItsDetails() {
@@ -159,6 +160,24 @@ class MainWindowTest : public QObject {
     const PickInfo k = scene->PickAt(*scene->WidgetPosition(keyframe));
     QCOMPARE(k.kind, PickKind::kKeyframe);
     QVERIFY(win.w.pickInfoPanel()->title().startsWith(QStringLiteral("Keyframe")));
+  }
+
+  void statusLinesNeverHideTheirText() {
+    // A status longer than its line: elided in the middle, whole in the
+    // tooltip, the line no wider than its bound (issue 25.7).
+    StatusLabel label(300);
+    const QString text = QStringLiteral("max-mixture: 8 iterations, 4.9 s, 91.1 % of the features on the hull; ") +
+                         QStringLiteral("12 objects; parameters changed since: Run to update");
+    label.SetStatus(text);
+    QVERIFY(label.elided());
+    QCOMPARE(label.fullText(), text);
+    QCOMPARE(label.toolTip(), text);
+    QVERIFY(label.text().contains(QStringLiteral("…")));
+    QVERIFY(label.text().endsWith(QStringLiteral("Run to update")));
+    QVERIFY(label.sizeHint().width() <= 300);
+    label.SetStatus(QStringLiteral("short"));
+    QVERIFY(!label.elided());
+    QCOMPARE(label.text(), QStringLiteral("short"));
   }
 
   void theDistanceToolMeasuresBetweenTwoPicks() {

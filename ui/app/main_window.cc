@@ -80,10 +80,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   ConnectWork();
   ConnectImages();
 
-  results_label_ = new QLabel(this);
+  results_label_ = new StatusLabel(640, this);
   results_label_->setObjectName(QStringLiteral("resultsLabel"));
   statusBar()->addPermanentWidget(results_label_);
-  placement_label_ = new QLabel(this);
+  placement_label_ = new StatusLabel(420, this);
   placement_label_->setObjectName(QStringLiteral("placementLabel"));
   statusBar()->addPermanentWidget(placement_label_);
   job_status_ = new JobStatusWidget(jobs_, this);
@@ -321,7 +321,7 @@ void MainWindow::ConnectSession() {
 
 void MainWindow::UpdatePlacement() {
   const ModelPlacement p = session_->placement();
-  placement_label_->setText(QStringLiteral("Model placed by: %1").arg(QString::fromUtf8(ModelPlacementLabel(p))));
+  placement_label_->SetStatus(QStringLiteral("Model placed by: %1").arg(QString::fromUtf8(ModelPlacementLabel(p))));
   layers_->SetPlacements(session_->AvailablePlacements(), p);
   std::map<SceneLayer, bool> has_data;
   for (SceneLayer layer : AllSceneLayers()) has_data[layer] = scene_->Stats(layer).present;
@@ -352,7 +352,7 @@ void MainWindow::UpdateActions() {
 
 void MainWindow::UpdateResults() {
   const QString text = inspection_->StatusText();
-  results_label_->setText(text);
+  results_label_->SetStatus(text);
   results_label_->setVisible(!text.isEmpty());
   results_label_->setStyleSheet(inspection_->UpToDate() || text.isEmpty() ? QString()
                                                                           : QStringLiteral("color: #b9770e;"));

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "ui/app/command_line.h"
+#include "ui/jobs/status_label.h"
 #include "ui/models/report_source.h"
 
 class QAction;
@@ -116,8 +117,8 @@ class MainWindow : public QMainWindow {
   SonarPanel* sonarPanel() const { return sonar_; }
   ResultExporter* exporter() const { return exporter_; }
   JobStatusWidget* jobStatus() const { return job_status_; }
-  QLabel* placementLabel() const { return placement_label_; }
-  QLabel* resultsLabel() const { return results_label_; }
+  StatusLabel* placementLabel() const { return placement_label_; }
+  StatusLabel* resultsLabel() const { return results_label_; }
   QAction* action(const QString& object_name) const;
 
  protected:
@@ -216,8 +217,8 @@ class MainWindow : public QMainWindow {
   QDockWidget* sonar_dock_ = nullptr;
   void PrepareResultDocks();  // once the window is shown
   JobStatusWidget* job_status_ = nullptr;
-  QLabel* placement_label_ = nullptr;
-  QLabel* results_label_ = nullptr;
+  StatusLabel* placement_label_ = nullptr;
+  StatusLabel* results_label_ = nullptr;
   QMenu* view_menu_ = nullptr;
   QMenu* recent_menu_ = nullptr;
   QAction* dock_toggles_end_ = nullptr;       // separator after the dock toggles in View

@@ -11,7 +11,7 @@ JobStatusWidget::JobStatusWidget(JobRunner* jobs, QWidget* parent) : QWidget(par
   setObjectName(QStringLiteral("jobStatus"));
   auto* layout = new QHBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
-  label_ = new QLabel(this);
+  label_ = new StatusLabel(520, this);
   label_->setMinimumWidth(200);
   bar_ = new QProgressBar(this);
   bar_->setRange(0, 1000);
@@ -28,7 +28,7 @@ JobStatusWidget::JobStatusWidget(JobRunner* jobs, QWidget* parent) : QWidget(par
   connect(cancel_, &QPushButton::clicked, jobs_, &JobRunner::CancelAll);
   connect(jobs_, &JobRunner::jobStarted, this, [this](JobId id, const QString&, const QString& title) {
     shown_ = id;
-    label_->setText(title);
+    label_->SetStatus(title);
     bar_->setValue(0);
     show();
   });
@@ -36,13 +36,13 @@ JobStatusWidget::JobStatusWidget(JobRunner* jobs, QWidget* parent) : QWidget(par
           [this](JobId id, const QString&, double fraction, const QString& message) {
             if (id != shown_) return;
             bar_->setValue(static_cast<int>(fraction * 1000));
-            if (!message.isEmpty()) label_->setText(message);
+            if (!message.isEmpty()) label_->SetStatus(message);
           });
   connect(jobs_, &JobRunner::busyChanged, this, [this](bool busy) {
     if (!busy) hide();
   });
 }
 
-QString JobStatusWidget::text() const { return label_->text(); }
+QString JobStatusWidget::text() const { return label_->fullText(); }
 
 }  // namespace hull::ui

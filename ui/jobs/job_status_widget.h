@@ -5,8 +5,8 @@
 #include <QWidget>
 
 #include "ui/jobs/job_runner.h"
+#include "ui/jobs/status_label.h"
 
-class QLabel;
 class QProgressBar;
 class QPushButton;
 
@@ -25,7 +25,7 @@ class JobStatusWidget : public QWidget {
  private:
   JobRunner* jobs_;
   JobId shown_ = 0;  // the job whose progress is on display (the latest started)
-  QLabel* label_ = nullptr;
+  StatusLabel* label_ = nullptr;
   QProgressBar* bar_ = nullptr;
   QPushButton* cancel_ = nullptr;
 };
