@@ -7,7 +7,6 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper2D.h>
 #include <vtkProperty2D.h>
 #include <vtkRenderer.h>
 #include <vtkTextActor.h>
@@ -17,22 +16,14 @@
 #include <QString>
 #include <cmath>
 
+#include "ui/views/scene_layers_impl.h"
+
 namespace hull::ui {
 
 namespace {
 
-constexpr int kGap = 4;                           // between the histogram and the colour bar
-constexpr int kLength = 64;                       // pixels of the longest bar
-constexpr double kPanel[3] = {0.06, 0.09, 0.13};  // the legends' backing
-
-vtkSmartPointer<vtkActor2D> ActorOf(vtkPolyData* data) {
-  vtkNew<vtkPolyDataMapper2D> mapper;
-  mapper->SetInputData(data);
-  auto actor = vtkSmartPointer<vtkActor2D>::New();
-  actor->SetMapper(mapper);
-  actor->PickableOff();
-  return actor;
-}
+constexpr int kGap = 4;      // between the histogram and the colour bar
+constexpr int kLength = 64;  // pixels of the longest bar
 
 void AddQuad(vtkPoints* points, vtkCellArray* cells, double x0, double y0, double x1, double y1) {
   const vtkIdType first = points->GetNumberOfPoints();
@@ -49,19 +40,14 @@ void AddQuad(vtkPoints* points, vtkCellArray* cells, double x0, double y0, doubl
 LegendHistogram::LegendHistogram(vtkRenderer* renderer) {
   bars_ = vtkSmartPointer<vtkPolyData>::New();
   panel_ = vtkSmartPointer<vtkPolyData>::New();
-  bars_actor_ = ActorOf(bars_);
-  panel_actor_ = ActorOf(panel_);
-  panel_actor_->GetProperty()->SetColor(kPanel[0], kPanel[1], kPanel[2]);
-  panel_actor_->GetProperty()->SetOpacity(0.72);
+  bars_actor_ = OverlayActor2D(bars_);
+  panel_actor_ = OverlayActor2D(panel_);
+  panel_actor_->GetProperty()->SetColor(kOverlayPanel[0], kOverlayPanel[1], kOverlayPanel[2]);
+  panel_actor_->GetProperty()->SetOpacity(kOverlayPanelOpacity);
   text_ = vtkSmartPointer<vtkTextActor>::New();
-  vtkTextProperty* t = text_->GetTextProperty();
-  t->SetFontSize(12);
-  t->SetColor(1.0, 1.0, 1.0);
-  t->ShadowOff();
-  t->SetJustificationToRight();
-  t->SetVerticalJustificationToTop();
-  t->SetBackgroundColor(kPanel[0], kPanel[1], kPanel[2]);
-  t->SetBackgroundOpacity(0.72);
+  StyleOverlayText(text_->GetTextProperty(), 12);
+  text_->GetTextProperty()->SetJustificationToRight();
+  text_->GetTextProperty()->SetVerticalJustificationToTop();
   text_->PickableOff();
   renderer->AddViewProp(panel_actor_);
   renderer->AddViewProp(bars_actor_);

@@ -11,7 +11,6 @@
 #include <vtkNew.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper2D.h>
 #include <vtkProperty2D.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -20,6 +19,8 @@
 
 #include <cmath>
 
+#include "ui/views/scene_layers_impl.h"
+
 namespace hull::ui {
 
 namespace {
@@ -27,28 +28,16 @@ namespace {
 constexpr int kAxesPixels = 120;            // the orientation marker's square
 constexpr int kBarLeft = 24 + kAxesPixels;  // the scale bar starts right of it
 constexpr int kBarBottom = 22;
-constexpr double kPanel[3] = {0.06, 0.09, 0.13};  // the legends' backing
 
 void StyleCaption(vtkCaptionActor2D* caption) {
-  vtkTextProperty* t = caption->GetCaptionTextProperty();
-  t->SetFontSize(13);
-  t->BoldOff();
-  t->ItalicOff();
-  t->ShadowOff();
-  t->SetColor(1.0, 1.0, 1.0);
-  t->SetBackgroundColor(kPanel[0], kPanel[1], kPanel[2]);
-  t->SetBackgroundOpacity(0.72);
+  StyleOverlayText(caption->GetCaptionTextProperty(), 13);
   caption->GetTextActor()->SetTextScaleModeToNone();
 }
 
 vtkSmartPointer<vtkActor2D> BarActor(vtkPolyData* bar, double width, double grey) {
-  vtkNew<vtkPolyDataMapper2D> mapper;
-  mapper->SetInputData(bar);
-  auto actor = vtkSmartPointer<vtkActor2D>::New();
-  actor->SetMapper(mapper);
+  auto actor = OverlayActor2D(bar);
   actor->GetProperty()->SetLineWidth(width);
   actor->GetProperty()->SetColor(grey, grey, grey);
-  actor->PickableOff();
   return actor;
 }
 
@@ -90,12 +79,7 @@ SceneGuides::SceneGuides(vtkRenderWindow* window, vtkRenderer* scene) : window_(
   bar_back_ = BarActor(bar, 5.0, 0.0);
   bar_front_ = BarActor(bar, 2.0, 1.0);
   bar_text_ = vtkSmartPointer<vtkTextActor>::New();
-  vtkTextProperty* t = bar_text_->GetTextProperty();
-  t->SetFontSize(13);
-  t->SetColor(1.0, 1.0, 1.0);
-  t->ShadowOff();
-  t->SetBackgroundColor(kPanel[0], kPanel[1], kPanel[2]);
-  t->SetBackgroundOpacity(0.72);
+  StyleOverlayText(bar_text_->GetTextProperty(), 13);
   bar_text_->PickableOff();
   for (vtkProp* p :
        {static_cast<vtkProp*>(bar_back_), static_cast<vtkProp*>(bar_front_), static_cast<vtkProp*>(bar_text_)}) {

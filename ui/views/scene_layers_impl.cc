@@ -2,6 +2,7 @@
 
 #include <vtkColorTransferFunction.h>
 #include <vtkNew.h>
+#include <vtkPolyDataMapper2D.h>
 #include <vtkProperty.h>
 #include <vtkProperty2D.h>
 #include <vtkTextProperty.h>
@@ -236,17 +237,35 @@ vtkSmartPointer<vtkScalarBarActor> MakeLegend(vtkLookupTable* lut, const char* t
   legend->GetAnnotationTextProperty()->ShadowOff();
   // White text on a dark panel: readable over a light model (zero deviation
   // is near-white) as over the dark water.
-  constexpr double kPanel[3] = {0.06, 0.09, 0.13};
   legend->DrawBackgroundOn();
-  legend->GetBackgroundProperty()->SetColor(kPanel[0], kPanel[1], kPanel[2]);
-  legend->GetBackgroundProperty()->SetOpacity(0.72);
+  legend->GetBackgroundProperty()->SetColor(kOverlayPanel[0], kOverlayPanel[1], kOverlayPanel[2]);
+  legend->GetBackgroundProperty()->SetOpacity(kOverlayPanelOpacity);
   // The title and the NaN annotation may reach beyond the panel: their own backing.
   for (vtkTextProperty* t : {legend->GetTitleTextProperty(), legend->GetAnnotationTextProperty()}) {
-    t->SetBackgroundColor(kPanel[0], kPanel[1], kPanel[2]);
-    t->SetBackgroundOpacity(0.72);
+    t->SetBackgroundColor(kOverlayPanel[0], kOverlayPanel[1], kOverlayPanel[2]);
+    t->SetBackgroundOpacity(kOverlayPanelOpacity);
   }
   legend->VisibilityOff();
   return legend;
+}
+
+void StyleOverlayText(vtkTextProperty* text, int font_size) {
+  text->SetFontSize(font_size);
+  text->SetColor(1.0, 1.0, 1.0);
+  text->BoldOff();
+  text->ItalicOff();
+  text->ShadowOff();
+  text->SetBackgroundColor(kOverlayPanel[0], kOverlayPanel[1], kOverlayPanel[2]);
+  text->SetBackgroundOpacity(kOverlayPanelOpacity);
+}
+
+vtkSmartPointer<vtkActor2D> OverlayActor2D(vtkPolyData* data) {
+  vtkNew<vtkPolyDataMapper2D> mapper;
+  mapper->SetInputData(data);
+  auto actor = vtkSmartPointer<vtkActor2D>::New();
+  actor->SetMapper(mapper);
+  actor->PickableOff();
+  return actor;
 }
 
 void ColourByArray(vtkPolyDataMapper* mapper, const char* array, vtkLookupTable* lut) {

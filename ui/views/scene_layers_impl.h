@@ -4,12 +4,14 @@
 #pragma once
 
 #include <vtkActor.h>
+#include <vtkActor2D.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkLookupTable.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkScalarBarActor.h>
 #include <vtkSmartPointer.h>
+#include <vtkTextProperty.h>
 
 #include "ui/session/scene_options.h"
 
@@ -34,6 +36,16 @@ void ShapeDeviationLut(vtkLookupTable* lut, vtkColorTransferFunction* ctf, doubl
                        bool mark_out_of_range);
 // A perceptually uniform sequential map (viridis, 256 entries).
 vtkSmartPointer<vtkLookupTable> MakeSequentialLut();
+// The dark, translucent backing of everything written over the scene (the
+// legends, the histogram's note, the scale bar's and the axes' labels):
+// white text on it reads over a light model as over the dark water.
+constexpr double kOverlayPanel[3] = {0.06, 0.09, 0.13};
+constexpr double kOverlayPanelOpacity = 0.72;
+// White text of `font_size` on that backing, plain (no bold, italic, shadow).
+void StyleOverlayText(vtkTextProperty* text, int font_size);
+// An unpickable 2-D actor drawing `data` in viewport pixels.
+vtkSmartPointer<vtkActor2D> OverlayActor2D(vtkPolyData* data);
+
 // A colour legend (hidden) in the scene's style for a lookup table.
 vtkSmartPointer<vtkScalarBarActor> MakeLegend(vtkLookupTable* lut, const char* title, const char* label_format);
 

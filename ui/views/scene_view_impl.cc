@@ -162,7 +162,7 @@ void SceneViewImpl::UpdateHistogram() {
   histogram_->Set(ComputeDeviationHistogram(deviation ? *deviation : std::vector<double>{}, lo, std::max(hi, lo + 1e-6),
                                             kBins, options_.tolerance),
                   deviation_lut_);
-  histogram_->SetVisible(deviation && HeatmapShown() && !SignificanceShown());
+  histogram_->SetVisible(HistogramShown());
 }
 
 void SceneViewImpl::SetAdjusted(std::shared_ptr<const AdjustedOverlays> adjusted) {
@@ -344,8 +344,7 @@ void SceneViewImpl::UpdateVisibility() {
   for (auto& [layer, actor] : actors_) actor->SetVisibility(options_.IsVisible(layer) && HasLayerData(layer));
   legend_->SetVisibility(LegendVisible());
   legend_->SetDrawNanAnnotation(SignificanceShown());
-  // Not under the significance map: its NaN swatch shifts the colour bar.
-  histogram_->SetVisible(HeatmapShown() && !SignificanceShown());
+  histogram_->SetVisible(HistogramShown());
   // What lies beyond a manual range: counted under the histogram, or (no
   // histogram) the legend's own swatches.
   const bool swatches = !options_.auto_range && !histogram_->visible();
@@ -367,6 +366,11 @@ void SceneViewImpl::PlaceLegends() {
     legend->GetPositionCoordinate()->SetValue(x, histogram ? 0.13 : 0.05);
     x -= legend == legend_.GetPointer() && histogram ? 0.30 : 0.15;
   }
+}
+
+bool SceneViewImpl::HistogramShown() const {
+  // Not under the significance map: its NaN swatch shifts the colour bar.
+  return HeatmapShown() && !SignificanceShown();
 }
 
 bool SceneViewImpl::SignificanceShown() const {

@@ -109,6 +109,7 @@ class SceneViewImpl {
   bool AdjustedDeviationsShown() const;
   bool HeatmapShown() const;
   bool SignificanceShown() const;
+  bool HistogramShown() const;  // the histogram beside the deviation legend is wanted
   void UpdateSignificance();
   void PlaceLegends();
   void UpdateFrusta();
